@@ -1,0 +1,45 @@
+#pragma once
+// What every subcommand shares: output options, the summary JSON, the distortion file,
+// progress on stderr, thread count and exit codes.
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "strictmin/solvers/result.h"
+
+namespace strictmin::cli {
+
+// Exit codes (docs/formats.md).
+constexpr int kExitSuccess = 0;
+constexpr int kExitBadInput = 1;
+constexpr int kExitNotConverged = 2;
+
+struct OutputOptions {
+  std::string summary;     // --summary FILE or "-" (stdout)
+  std::string distortion;  // --distortion FILE: one value per element
+  bool quiet = false;
+  int threads = 0;         // 0: all cores
+};
+
+void add_output_options(CLI::App& cmd, OutputOptions& out);
+
+// Limits TBB and OpenBLAS to `threads` (0: leave the defaults). Keep the returned object alive.
+std::shared_ptr<void> limit_threads(int threads);
+
+// Writes the summary (pretty JSON) to a file (atomically) or stdout, and the distortion
+// vector, one value per line in element order.
+void write_outputs(const OutputOptions& out, const nlohmann::json& summary, const Eigen::VectorXd& distortion);
+
+// A JSON number, or null for a non-finite value (an infinite distortion, no bound).
+nlohmann::json number_or_null(double x);
+
+// Progress line on stderr unless quiet.
+void progress(const OutputOptions& out, const std::string& line);
+
+double seconds_since(std::chrono::steady_clock::time_point t0);
+
+int exit_code_for(SolveStatus status);
+
+}  // namespace strictmin::cli

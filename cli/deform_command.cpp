@@ -1,0 +1,126 @@
+// strictmin deform MESH --handles FILE [--measure fd] [--method l2|linf] -o OUT
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "common.h"
+#include "strictmin/io/handles_io.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/examples.h"
+
+namespace strictmin::cli {
+namespace {
+
+struct DeformArgs {
+  std::string mesh, handles, example, output, measure = "fd", method = "l2";
+  double gap = 1e-8;
+  int max_iterations = 100;
+  OutputOptions out;
+};
+
+std::string format_iteration(const IterationRecord& r) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "  linf iter %3d  k = %.10g  lower bound = %.10g  gap = %.2e  %.2f s", r.iteration,
+                r.max_distortion, r.lower_bound, r.gap, r.time_s);
+  return buf;
+}
+
+int run_deform(const DeformArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto threads = limit_threads(a.out.threads);
+  DeformOptions options;
+  const auto method = parse_method(a.method);
+  if (!method) throw InputError("unknown method '" + a.method + "' (use one of: " + method_list() + ")");
+  const auto measure = parse_measure(a.measure);
+  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
+  options.method = *method;
+  options.measure = *measure;
+  options.linf.gap_tolerance = a.gap;
+  options.linf.max_iterations = a.max_iterations;
+  options.linf.progress = [&](const IterationRecord& r) { progress(a.out, format_iteration(r)); };
+
+  Mesh mesh;
+  std::vector<Handle> handles;
+  std::string input;
+  if (!a.example.empty()) {
+    if (!a.mesh.empty()) throw InputError("give either a mesh file or --example, not both");
+    Example ex = make_example(a.example);
+    mesh = std::move(ex.mesh);
+    handles = a.handles.empty() ? std::move(ex.handles) : read_handles(a.handles, mesh.num_vertices(), mesh.dim());
+    input = "example:" + a.example;
+  } else {
+    if (a.mesh.empty()) throw InputError("deform needs a mesh file or --example NAME");
+    if (a.handles.empty()) throw InputError("deform needs --handles FILE (positional constraints)");
+    std::vector<std::string> warnings;
+    mesh = read_mesh(a.mesh, &warnings);
+    for (const auto& w : warnings) progress(a.out, "warning: " + w);
+    const int dim = mesh.element_type() == ElementType::Tetrahedron ? 3 : 2;
+    handles = read_handles(a.handles, mesh.num_vertices(), dim);
+    input = a.mesh;
+  }
+  progress(a.out, "deform: " + std::to_string(mesh.num_elements()) + " elements, " + std::to_string(handles.size()) +
+                      " handles, method " + a.method + ", measure " + a.measure);
+
+  const DeformOutcome d = deform(mesh, handles, options);
+  if (!d.result.ok()) progress(a.out, "warning: " + status_name(d.result.status) + ": " + d.result.message);
+  if (!a.output.empty()) {
+    MeshWriteOptions w;
+    w.element_quality = &d.measured.distortion;
+    write_mesh(a.output, d.deformed, w);
+  }
+  nlohmann::json s;
+  s["task"] = "deform";
+  s["input"] = input;
+  s["output"] = a.output;
+  s["method"] = method_name(options.method);
+  s["measure"] = measure_name(options.measure);
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["handles"] = handles.size();
+  s["dimension"] = d.problem.image_dim;
+  s["max_distortion"] = number_or_null(d.measured.stats.max);
+  s["max_element"] = d.measured.stats.max_element;
+  s["l2_distortion"] = number_or_null(d.measured.stats.l2);
+  s["mean_distortion"] = number_or_null(d.measured.stats.mean);
+  s["flipped"] = d.measured.stats.flipped;
+  s["status"] = status_name(d.result.status);
+  if (!d.result.message.empty()) s["message"] = d.result.message;
+  s["iterations"] = d.result.iterations;
+  if (options.method == Method::Linf) s["lower_bound"] = number_or_null(d.result.lower_bound);
+  s["solver_time_s"] = d.result.time_s;
+  s["time_s"] = seconds_since(t0);
+  write_outputs(a.out, s, d.measured.distortion);
+  progress(a.out, "deform: max distortion " + std::to_string(d.measured.stats.max) + ", L2 " +
+                      std::to_string(d.measured.stats.l2) + ", " + std::to_string(d.measured.stats.flipped) +
+                      " flipped, " + status_name(d.result.status));
+  return exit_code_for(d.result.status);
+}
+
+}  // namespace
+
+void add_deform_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<DeformArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "deform",
+      "Deform a planar triangle mesh or a tet mesh so that the handle vertices reach their targets, with the least "
+      "distortion ||J - I|| (field deviation) in the chosen norm.");
+  cmd->add_option("mesh", args->mesh, "Input mesh (.obj/.off planar triangles, .mesh tetrahedra)");
+  cmd->add_option("--example", args->example, "Use a built-in example instead of a mesh: square, bar, tetbar");
+  cmd->add_option("--handles", args->handles,
+                  "Positional constraints: JSON {\"handles\":[{\"vertex\":i,\"position\":[x,y]}]} or text lines "
+                  "'vertex x y [z]' (0-based vertex indices)")
+      ->type_name("FILE");
+  cmd->add_option("--measure", args->measure, "Distortion measure: fd (field deviation ||J - I||)")->capture_default_str();
+  cmd->add_option("--method", args->method,
+                  "l2 (least squares, fast, concentrates distortion) or linf (least maximum distortion)")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
+  cmd->add_option("--gap", args->gap, "linf: stop at this relative duality gap")->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations, "linf: iteration cap")->capture_default_str();
+  add_output_options(*cmd, args->out);
+  cmd->callback([args, &exit_code] { exit_code = run_deform(*args); });
+}
+
+}  // namespace strictmin::cli

@@ -1,0 +1,41 @@
+// strictmin: maps of triangle and tet meshes with the least worst-case distortion.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "common.h"
+#include "strictmin/io/input_error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "strictmin: maps of triangle and tetrahedral meshes with the least possible worst-case distortion\n"
+      "(L2, L-infinity and strict minimizers; Levi & Zorin 2014).\n\n"
+      "Examples:\n"
+      "  strictmin deform --example square --method linf --summary -\n"
+      "  strictmin deform mesh.obj --handles handles.txt --method linf -o out.obj\n"
+      "  strictmin eval rest.obj mapped.obj --measure arap\n\n"
+      "Exit codes: 0 success, 1 bad input, 2 solver did not reach its tolerance (result still written).",
+      "strictmin"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "strictmin 0.1.0");
+  int exit_code = strictmin::cli::kExitSuccess;
+  strictmin::cli::add_deform_command(app, exit_code);
+  strictmin::cli::add_eval_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : strictmin::cli::kExitBadInput;
+  } catch (const strictmin::InputError& e) {
+    std::cerr << "strictmin: error: " << e.what() << std::endl;
+    return strictmin::cli::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "strictmin: error: out of memory" << std::endl;
+    return strictmin::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "strictmin: error: " << e.what() << std::endl;
+    return strictmin::cli::kExitBadInput;
+  }
+  return exit_code;
+}

@@ -1,0 +1,14 @@
+#pragma once
+// Write a file through a temporary in the same directory, renamed into place on success.
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace strictmin {
+
+// Calls write(stream) on a temporary file, then renames it to `path`. If write throws or
+// the stream fails, the temporary is removed and `path` is left as it was; throws
+// InputError("cannot write PATH: reason").
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+}  // namespace strictmin

@@ -1,0 +1,23 @@
+#pragma once
+// Validation of a mesh read from a file: rejects what the maths can't take, naming the
+// element and the reason (InputError); warns about what it can ignore.
+#include <string>
+#include <vector>
+
+#include "strictmin/mesh/mesh.h"
+
+namespace strictmin {
+
+// Checks, in this order: empty mesh; non-finite coordinates (vertex index); indices out of
+// range or repeated in an element; zero-area triangles / zero-volume tets (relative to the
+// mesh size); non-manifold edges (triangles: an edge in more than two faces) or faces
+// (tets: a face in more than two tets); inconsistent orientation (triangles: an interior
+// edge traversed the same way by both faces; planar triangles and tets: signed areas /
+// volumes of both signs). Unreferenced vertices are kept (their indices stay valid) and
+// reported in `warnings`. `source` names the file in messages.
+void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings = nullptr);
+
+// Vertices used by no element.
+std::vector<int> unreferenced_vertices(const Mesh& mesh);
+
+}  // namespace strictmin

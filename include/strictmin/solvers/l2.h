@@ -1,0 +1,54 @@
+#pragma once
+// L2 field deviation: minimize sum_T A_T ||J_T - R_T||_F^2 over the free vertices.
+//
+// The energy separates by image coordinate: row r of J_T is sum_j q_j[r] g_j^T, so the
+// normal equations are K Q_free = B with one scalar matrix K_ij = sum_T A_T g_i . g_j
+// (the cotangent Laplacian for triangles) shared by all coordinates. K is factorized once
+// (CHOLMOD) and kept: new targets only change B (the global step of local-global).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/solvers/sparse_cholesky.h"
+
+namespace strictmin {
+
+struct L2Options {};
+
+class L2Solver {
+ public:
+  // Assembles and factorizes K for the problem's mesh, weights and fixed vertices.
+  explicit L2Solver(const Problem& problem);
+  // Solved-for positions (#V by image_dim) for the problem's current targets and fixed
+  // positions (same mesh and fixed set as at construction).
+  Eigen::MatrixXd solve(const Problem& problem) const;
+  SolveStatus status() const { return status_; }
+  const std::string& message() const { return message_; }
+  double analyze_s() const { return analyze_s_; }
+  double factorize_s() const { return factorize_s_; }
+  const Eigen::SparseMatrix<double>& matrix() const { return K_; }
+
+ private:
+  std::vector<int> free_index_;
+  Eigen::SparseMatrix<double> K_;       // free by free
+  Eigen::SparseMatrix<double> K_fixed_; // free by all vertices: couplings to fixed ones
+  SparseCholesky cholesky_;
+  SolveStatus status_ = SolveStatus::Solved;
+  std::string message_;
+  double analyze_s_ = 0, factorize_s_ = 0;
+};
+
+// The sum_T A_T ||J_T - R_T||^2 minimizer. Status numerical-error (with the reason) when
+// the problem has no unique solution (a connected part without any fixed vertex).
+Result solve_l2(const Problem& problem, const L2Options& options = {});
+
+// Field deviation ||J_T - R_T||_F of every element for the map X.
+Eigen::VectorXd field_deviation(const Problem& problem, const Eigen::MatrixXd& X);
+
+// The first vertex of each connected part (through shared elements) that has no fixed
+// vertex; empty when every part is anchored.
+std::vector<int> unanchored_components(const Problem& problem);
+
+}  // namespace strictmin

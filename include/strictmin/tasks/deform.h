@@ -1,0 +1,36 @@
+#pragma once
+// Deformation with positional constraints (planar triangle meshes and tet meshes): the
+// handles are fixed, every element's target is the identity (field deviation ||J - I||).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "strictmin/measures/measures.h"
+#include "strictmin/mesh/handle.h"
+#include "strictmin/mesh/mesh.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/tasks/map_distortion.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin {
+
+struct DeformOptions {
+  Method method = Method::L2;
+  Measure measure = Measure::FieldDeviation;
+  LinfOptions linf;
+};
+
+struct DeformOutcome {
+  Problem problem;
+  Result result;          // positions, the solver's field deviation, status, iterations
+  Mesh deformed;          // the input mesh with the new positions
+  MapDistortion measured; // distortion of the result in options.measure, stats, flips
+};
+
+// Throws InputError for input the task can't take: a surface (non-planar triangle) mesh,
+// no handles, a part of the mesh without a handle, a measure the method can't minimize.
+DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options);
+
+}  // namespace strictmin

@@ -1,0 +1,28 @@
+#include "strictmin/report/stats.h"
+
+#include <cmath>
+#include <limits>
+
+namespace strictmin {
+
+DistortionStats distortion_stats(const Eigen::VectorXd& d, const Eigen::VectorXd& w) {
+  DistortionStats s;
+  s.elements = static_cast<int>(d.size());
+  if (d.size() == 0) return s;
+  double sum_w = 0, sum_wd = 0, sum_wd2 = 0;
+  s.max = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (d(i) > s.max) {
+      s.max = d(i);
+      s.max_element = static_cast<int>(i);
+    }
+    sum_w += w(i);
+    sum_wd += w(i) * d(i);
+    sum_wd2 += w(i) * d(i) * d(i);
+  }
+  s.mean = sum_wd / sum_w;
+  s.l2 = std::sqrt(sum_wd2 / sum_w);
+  return s;
+}
+
+}  // namespace strictmin

@@ -1,0 +1,130 @@
+#include "strictmin/solvers/l2.h"
+
+#include <chrono>
+#include <numeric>
+
+#include "strictmin/io/input_error.h"
+
+namespace strictmin {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int find_root(std::vector<int>& parent, int v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+std::vector<int> unanchored_components(const Problem& p) {
+  std::vector<int> parent(p.num_vertices);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int j = 1; j < p.corners(); ++j)
+      parent[find_root(parent, p.elements(e, j))] = find_root(parent, p.elements(e, 0));
+  std::vector<char> anchored(p.num_vertices, 0), used(p.num_vertices, 0);
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int j = 0; j < p.corners(); ++j) used[p.elements(e, j)] = 1;
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (used[v] && p.fixed[v]) anchored[find_root(parent, v)] = 1;
+  std::vector<int> out;
+  std::vector<char> seen(p.num_vertices, 0);
+  for (int v = 0; v < p.num_vertices; ++v) {
+    const int r = find_root(parent, v);
+    if (used[v] && !anchored[r] && !seen[r]) {
+      seen[r] = 1;
+      out.push_back(v);
+    }
+  }
+  return out;
+}
+
+L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
+  if (p.has_equalities())
+    throw InputError("the L2 solver does not handle linear equality constraints yet");
+  const int c = p.corners(), F = p.num_free();
+  std::vector<Eigen::Triplet<double>> free_t, fixed_t;
+  free_t.reserve(static_cast<size_t>(p.num_elements()) * c * c);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const auto g = p.gradients.middleRows(e * c, c);
+    for (int i = 0; i < c; ++i) {
+      const int fi = free_index_[p.elements(e, i)];
+      if (fi < 0) continue;
+      for (int j = 0; j < c; ++j) {
+        const double kij = p.weights(e) * g.row(i).dot(g.row(j));
+        const int vj = p.elements(e, j), fj = free_index_[vj];
+        if (fj >= 0) {
+          if (fj <= fi) free_t.emplace_back(fi, fj, kij);  // lower triangle
+        } else {
+          fixed_t.emplace_back(fi, vj, kij);
+        }
+      }
+    }
+  }
+  K_.resize(F, F);
+  K_.setFromTriplets(free_t.begin(), free_t.end());
+  K_fixed_.resize(F, p.num_vertices);
+  K_fixed_.setFromTriplets(fixed_t.begin(), fixed_t.end());
+  if (F == 0) return;
+  const std::vector<int> loose = unanchored_components(p);
+  if (!loose.empty()) {
+    status_ = SolveStatus::NumericalError;
+    message_ = "the map is not determined: the part of the mesh containing vertex " + std::to_string(loose.front()) +
+               " has no fixed vertex (" + std::to_string(loose.size()) + " such part(s))";
+    return;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  cholesky_.analyze(K_);
+  analyze_s_ = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  if (!cholesky_.factorize(K_)) {
+    status_ = SolveStatus::NumericalError;
+    message_ = "the L2 system is not positive definite (degenerate elements?)";
+  }
+  factorize_s_ = seconds_since(t0);
+}
+
+Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
+  Eigen::MatrixXd X = p.positions;
+  if (status_ != SolveStatus::Solved || K_.rows() == 0) return X;
+  const int c = p.corners(), n = p.image_dim;
+  // B_i = sum_T A_T R_T g_i (one row per free vertex, one column per image coordinate),
+  // minus the couplings to the fixed vertices.
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(K_.rows(), n);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const auto R = p.targets.middleRows(e * n, n);
+    for (int i = 0; i < c; ++i) {
+      const int fi = free_index_[p.elements(e, i)];
+      if (fi >= 0) B.row(fi).noalias() += p.weights(e) * (R * p.gradients.row(e * c + i).transpose()).transpose();
+    }
+  }
+  B.noalias() -= K_fixed_ * p.positions;
+  const Eigen::MatrixXd Q = cholesky_.solve(B);
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (free_index_[v] >= 0) X.row(v) = Q.row(free_index_[v]);
+  return X;
+}
+
+Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
+  Eigen::VectorXd d(p.num_elements());
+  for (int e = 0; e < p.num_elements(); ++e) d(e) = (p.jacobian(e, X) - p.target(e)).norm();
+  return d;
+}
+
+Result solve_l2(const Problem& p, const L2Options&) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Result r;
+  const L2Solver solver(p);
+  r.status = solver.status();
+  r.message = solver.message();
+  r.positions = solver.solve(p);
+  r.distortion = field_deviation(p, r.positions);
+  r.iterations = 1;
+  r.time_s = seconds_since(t0);
+  return r;
+}
+
+}  // namespace strictmin

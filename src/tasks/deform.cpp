@@ -1,0 +1,32 @@
+#include "strictmin/tasks/deform.h"
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/solvers/l2.h"
+
+namespace strictmin {
+
+DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options) {
+  if (mesh.element_type() == ElementType::Triangle && !mesh.is_planar())
+    throw InputError("deform needs a planar triangle mesh (every z equal) or a tet mesh; this is a 3D surface");
+  if (options.measure != Measure::FieldDeviation)
+    throw InputError("deform minimizes field deviation (--measure fd); '" + measure_name(options.measure) +
+                     "' is not available for deformation yet");
+  if (handles.empty()) throw InputError("deform needs at least one handle (--handles FILE)");
+  DeformOutcome out;
+  out.problem = make_problem(mesh);
+  out.problem.fix(handles);
+  const std::vector<int> loose = unanchored_components(out.problem);
+  if (!loose.empty())
+    throw InputError("the part of the mesh containing vertex " + std::to_string(loose.front()) +
+                     " has no handle, so its position is not determined; add a handle there");
+  switch (options.method) {
+    case Method::L2: out.result = solve_l2(out.problem); break;
+    case Method::Linf: out.result = solve_linf(out.problem, options.linf); break;
+  }
+  out.deformed = mesh;
+  out.deformed.V = out.result.positions;
+  out.measured = map_distortion(mesh, corner_images(mesh.F, out.result.positions), options.measure);
+  return out;
+}
+
+}  // namespace strictmin

@@ -1,0 +1,70 @@
+#include "strictmin/tasks/map_distortion.h"
+
+#include <Eigen/Dense>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/problem/problem.h"
+
+namespace strictmin {
+
+Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X) {
+  Eigen::MatrixXd C(F.rows() * F.cols(), X.cols());
+  for (Eigen::Index e = 0; e < F.rows(); ++e)
+    for (Eigen::Index j = 0; j < F.cols(); ++j) C.row(e * F.cols() + j) = X.row(F(e, j));
+  return C;
+}
+
+MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Measure measure) {
+  const Problem p = make_problem(rest);
+  const int c = p.corners(), E = p.num_elements();
+  const bool surface_to_3d = p.domain_dim == 2 && images.cols() == 3 && !rest.is_planar();
+  if (!surface_to_3d && images.cols() != p.image_dim)
+    throw InputError("the map has " + std::to_string(images.cols()) + " coordinates per vertex, the rest mesh needs " +
+                     std::to_string(p.image_dim));
+  MapDistortion out;
+  out.distortion.resize(E);
+  out.flipped = Eigen::VectorXi::Zero(E);
+  out.weights = p.weights;
+  for (int e = 0; e < E; ++e) {
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(images.cols(), p.domain_dim);
+    for (int j = 0; j < c; ++j) J.noalias() += images.row(e * c + j).transpose() * p.gradients.row(e * c + j);
+    Eigen::MatrixXd R = p.target(e);
+    if (surface_to_3d) {
+      // The identity of the surface in 3D: the element's frame axes (local_frame_coordinates).
+      const Eigen::Vector3d p0 = rest.V.row(rest.F(e, 0)), p1 = rest.V.row(rest.F(e, 1)), p2 = rest.V.row(rest.F(e, 2));
+      const Eigen::Vector3d x = (p1 - p0).normalized();
+      const Eigen::Vector3d y = ((p1 - p0).cross(p2 - p0)).cross(p1 - p0).normalized();
+      R.resize(3, 2);
+      R << x, y;
+    }
+    out.distortion(e) = distortion(measure, J, R);
+    out.flipped(e) = is_flipped(J) ? 1 : 0;
+  }
+  out.stats = distortion_stats(out.distortion, out.weights);
+  out.stats.flipped = out.flipped.sum();
+  return out;
+}
+
+MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measure, const std::string& rest_name,
+                             const std::string& mapped_name) {
+  if (rest.num_elements() != mapped.num_elements() || rest.F.cols() != mapped.F.cols())
+    throw InputError(mapped_name + " has " + std::to_string(mapped.num_elements()) + " elements of " +
+                     std::to_string(mapped.F.cols()) + " corners, " + rest_name + " has " +
+                     std::to_string(rest.num_elements()) + " of " + std::to_string(rest.F.cols()) +
+                     ": a map needs the same connectivity");
+  if (mapped.has_uv()) return map_distortion(rest, corner_images(mapped.FUV, mapped.UV), measure);
+  if (rest.num_vertices() != mapped.num_vertices())
+    throw InputError(mapped_name + " has " + std::to_string(mapped.num_vertices()) + " vertices, " + rest_name +
+                     " has " + std::to_string(rest.num_vertices()) + ": a map needs the same connectivity");
+  for (int e = 0; e < rest.num_elements(); ++e)
+    for (int j = 0; j < rest.F.cols(); ++j)
+      if (rest.F(e, j) != mapped.F(e, j))
+        throw InputError("element " + std::to_string(e) + " (0-based) has different vertices in " + rest_name + " and " +
+                         mapped_name + ": a map needs the same connectivity");
+  Eigen::MatrixXd X = mapped.V;
+  const bool rest_planar = rest.element_type() == ElementType::Triangle && rest.is_planar();
+  if (rest_planar && mapped.V.cols() == 3 && mapped.is_planar()) X = to_planar(mapped).V;
+  return map_distortion(rest, corner_images(rest.F, X), measure);
+}
+
+}  // namespace strictmin
