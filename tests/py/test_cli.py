@@ -1,0 +1,161 @@
+"""End-to-end tests of the strictmin command line: summaries, outputs, exit codes and the
+messages for bad input. Run by ctest with STRICTMIN_CLI pointing at the built tool."""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
+DATA = os.environ.get("STRICTMIN_SHARED_DATA", "")
+
+
+def run(*args, check_code=None):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=120)
+    if check_code is not None and p.returncode != check_code:
+        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
+    return p
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+SUMMARY_KEYS = {"task", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}
+
+
+class Deform(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_square_l2_summary_on_stdout(self):
+        p = run("deform", "--example", "square", "--method", "l2", "--summary", "-", "--quiet", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertTrue(SUMMARY_KEYS <= s.keys(), s.keys())
+        self.assertEqual(s["task"], "deform")
+        self.assertEqual(s["method"], "l2")
+        self.assertEqual(s["measure"], "fd")
+        self.assertEqual(s["elements"], 800)
+        self.assertEqual(s["status"], "solved")
+        self.assertGreater(s["max_distortion"], s["l2_distortion"])
+        self.assertEqual(p.stderr, "", "--quiet prints nothing")
+
+    def test_outputs_and_distortion_file(self):
+        out = os.path.join(self.dir, "bar.ply")
+        dist = os.path.join(self.dir, "bar.txt")
+        summ = os.path.join(self.dir, "bar.json")
+        run("deform", "--example", "bar", "-o", out, "--distortion", dist, "--summary", summ, check_code=0)
+        values = [float(x) for x in open(dist).read().split()]
+        s = json.load(open(summ))
+        self.assertEqual(len(values), s["elements"])
+        self.assertAlmostEqual(max(values), s["max_distortion"], places=12)
+        ply = open(out).read()
+        self.assertIn("property float quality", ply)
+        self.assertEqual([f for f in os.listdir(self.dir) if f.startswith(".")], [], "no temporary files left")
+
+    def test_mesh_file_and_text_handles(self):
+        mesh = write(os.path.join(self.dir, "quad.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\n"
+                     "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n")
+        # Handles from the affine map x -> 2x: the interior vertex follows, every J = 2I.
+        handles = write(os.path.join(self.dir, "h.txt"), "# corners\n0 0 0\n1 2 0\n2 2 2\n3 0 2\n")
+        out = os.path.join(self.dir, "out.obj")
+        p = run("deform", mesh, "--handles", handles, "-o", out, "--summary", "-", "-q", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertAlmostEqual(s["max_distortion"], math.sqrt(2), places=10)
+        self.assertAlmostEqual(s["l2_distortion"], math.sqrt(2), places=10)
+        centre = [l for l in open(out) if l.startswith("v ")][4].split()
+        self.assertAlmostEqual(float(centre[1]), 1.0, places=10)
+        self.assertAlmostEqual(float(centre[2]), 1.0, places=10)
+
+    def test_json_handles_and_tets(self):
+        p = run("deform", "--example", "tetbar", "--summary", "-", "-q", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertEqual(s["dimension"], 3)
+        self.assertEqual(s["elements"], 16 * 4 * 4 * 6)
+
+    def test_bad_inputs_exit_1_with_a_message(self):
+        mesh = write(os.path.join(self.dir, "tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        cases = [
+            (["deform", os.path.join(self.dir, "missing.obj"), "--handles", mesh], "missing.obj"),
+            (["deform", write(os.path.join(self.dir, "empty.obj"), ""), "--handles", mesh], "empty"),
+            (["deform", write(os.path.join(self.dir, "x.stl"), "solid"), "--handles", mesh], ".stl"),
+            (["deform", mesh, "--handles", write(os.path.join(self.dir, "h1.txt"), "7 0 0\n")], "7"),
+            (["deform", mesh, "--handles", write(os.path.join(self.dir, "h2.txt"), "0 0 0\n0 1 1\n")], "0"),
+            (["deform", mesh, "--handles", write(os.path.join(self.dir, "h3.txt"), "0 0 0 0\n")], "coordinates"),
+            (["deform", mesh, "--handles", write(os.path.join(self.dir, "h4.json"), "{\"handles\": [}")], "h4.json"),
+            (["deform", "--example", "square", "--method", "magic"], "magic"),
+            (["deform", "--example", "nothing"], "nothing"),
+            (["eval", mesh, write(os.path.join(self.dir, "two.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")], "element"),
+            (["eval", mesh], "vt"),
+        ]
+        for args, needle in cases:
+            with self.subTest(args=args):
+                p = run(*args)
+                self.assertEqual(p.returncode, 1, p.stderr)
+                self.assertIn("error", p.stderr)
+                self.assertIn(needle, p.stderr)
+
+    def test_failed_run_leaves_no_output(self):
+        out = os.path.join(self.dir, "never.obj")
+        run("deform", "--example", "square", "--method", "magic", "-o", out)
+        self.assertFalse(os.path.exists(out))
+
+    def test_help(self):
+        p = run("deform", "--help", check_code=0)
+        self.assertIn("--handles", p.stdout)
+        self.assertIn("--method", p.stdout)
+
+
+class Eval(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_affine_deformation(self):
+        rest = write(os.path.join(self.dir, "rest.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n")
+        # x -> diag(2, 0.5) x: ARAP sqrt(1 + 1/4), qc 4, iso 2, fd sqrt(1 + 1/4).
+        mapped = write(os.path.join(self.dir, "mapped.obj"), "v 0 0 0\nv 2 0 0\nv 2 0.5 0\nv 0 0.5 0\nf 1 2 3\nf 1 3 4\n")
+        for measure, value in [("arap", math.sqrt(1.25)), ("qc", 4.0), ("iso", 2.0), ("fd", math.sqrt(1.25)),
+                               ("asap", 1.5 / math.sqrt(2))]:
+            with self.subTest(measure=measure):
+                s = json.loads(run("eval", rest, mapped, "--measure", measure, "--summary", "-", "-q", check_code=0).stdout)
+                self.assertAlmostEqual(s["max_distortion"], value, places=12)
+                self.assertEqual(s["flipped"], 0)
+
+    def test_uv_mapped_obj_counts_as_a_parametrization(self):
+        # A 3D square tilted by 60 degrees about x, UV = its unrolled layout scaled by 1.5.
+        c, sn = math.cos(math.pi / 3), math.sin(math.pi / 3)
+        text = (f"v 0 0 0\nv 1 0 0\nv 1 {c} {sn}\nv 0 {c} {sn}\n"
+                "vt 0 0\nvt 1.5 0\nvt 1.5 1.5\nvt 0 1.5\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+        obj = write(os.path.join(self.dir, "uv.obj"), text)
+        s = json.loads(run("eval", obj, "--summary", "-", "-q", check_code=0).stdout)
+        self.assertEqual(s["measure"], "arap")
+        self.assertEqual(s["map_kind"], "parametrization")
+        self.assertAlmostEqual(s["max_distortion"], math.sqrt(0.5), places=12)
+        s = json.loads(run("eval", obj, "--measure", "asap", "--summary", "-", "-q", check_code=0).stdout)
+        self.assertAlmostEqual(s["max_distortion"], 0.0, places=12)
+
+    def test_flipped_elements_are_counted(self):
+        rest = write(os.path.join(self.dir, "rest.obj"), "v 0 0\nv 1 0\nv 0 1\nv 1 1\nf 1 2 3\nf 2 4 3\n")
+        mapped = write(os.path.join(self.dir, "flip.obj"), "v 0 0\nv 1 0\nv 0 1\nv -1 -1\nf 1 2 3\nf 2 4 3\n")
+        s = json.loads(run("eval", rest, mapped, "--summary", "-", "-q", check_code=0).stdout)
+        self.assertEqual(s["flipped"], 1)
+        s = json.loads(run("eval", rest, mapped, "--measure", "qc", "--summary", "-", "-q", check_code=0).stdout)
+        self.assertIsNone(s["max_distortion"], "an infinite distortion is null in JSON")
+
+
+if __name__ == "__main__":
+    result = unittest.main(exit=False, verbosity=2).result
+    sys.exit(0 if result.wasSuccessful() else 1)

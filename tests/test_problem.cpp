@@ -1,0 +1,151 @@
+// Barycentric gradients and Jacobians on affine maps (identity, rotation, scaling, shear),
+// for planar triangles, surface triangles in their local frames, and tets.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/measures/measures.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/problem/problem.h"
+
+using namespace strictmin;
+
+namespace {
+
+Eigen::MatrixXd apply_affine(const Eigen::MatrixXd& V, const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  return ((V * A.transpose()).rowwise() + b.transpose()).eval();
+}
+
+TEST(Problem, GradientsSumToZeroAndReproduceLinearFunctions) {
+  Mesh mesh = make_grid(3, 2, 2.0, 1.0);
+  const Problem p = make_problem(mesh);
+  ASSERT_EQ(p.num_elements(), 12);
+  EXPECT_NEAR(p.weights.sum(), 2.0, 1e-14);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const auto g = p.gradients.middleRows(e * 3, 3);
+    EXPECT_LT(g.colwise().sum().norm(), 1e-13);
+    // grad of the linear function x (resp. y) is (1, 0) (resp. (0, 1)).
+    Eigen::Vector2d gx = Eigen::Vector2d::Zero(), gy = Eigen::Vector2d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      gx += mesh.V(p.elements(e, j), 0) * g.row(j).transpose();
+      gy += mesh.V(p.elements(e, j), 1) * g.row(j).transpose();
+    }
+    EXPECT_LT((gx - Eigen::Vector2d(1, 0)).norm(), 1e-13);
+    EXPECT_LT((gy - Eigen::Vector2d(0, 1)).norm(), 1e-13);
+  }
+}
+
+TEST(Problem, AffineMapsOfPlanarTriangles) {
+  const Mesh mesh = make_grid(4, 4, 1.0, 1.0, -0.5, -0.5);
+  const Problem p = make_problem(mesh);
+  const double a = 0.4;
+  Eigen::Matrix2d rot, scale, shear;
+  rot << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  scale << 2.0, 0.0, 0.0, 0.5;
+  shear << 1.0, 0.3, 0.0, 1.0;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  for (const Eigen::Matrix2d& A : {Eigen::Matrix2d(I), rot, scale, shear}) {
+    const Eigen::MatrixXd X = apply_affine(mesh.V, A, Eigen::Vector2d(0.3, -1.2));
+    for (int e = 0; e < p.num_elements(); ++e) {
+      EXPECT_LT((p.jacobian(e, X) - A).norm(), 1e-13);
+      EXPECT_NEAR(distortion(Measure::FieldDeviation, p.jacobian(e, X), p.target(e)), (A - I).norm(), 1e-13);
+    }
+  }
+  // Exact distortions by hand: rotation by a: FD 2 sqrt(2) sin(a/2), ARAP 0;
+  // scale diag(2, 1/2): ARAP sqrt(1 + 1/4); shear 0.3: ASAP 0.3/sqrt(2).
+  const Eigen::MatrixXd Xr = apply_affine(mesh.V, rot, Eigen::Vector2d::Zero());
+  EXPECT_NEAR(distortion(Measure::FieldDeviation, p.jacobian(0, Xr), I), 2 * std::sqrt(2.0) * std::sin(a / 2), 1e-13);
+  EXPECT_NEAR(distortion(Measure::Arap, p.jacobian(0, Xr), I), 0.0, 1e-13);
+  EXPECT_NEAR(distortion(Measure::Arap, p.jacobian(3, apply_affine(mesh.V, scale, Eigen::Vector2d::Zero())), I),
+              std::sqrt(1.25), 1e-13);
+  EXPECT_NEAR(distortion(Measure::Asap, p.jacobian(5, apply_affine(mesh.V, shear, Eigen::Vector2d::Zero())), I),
+              0.3 / std::sqrt(2.0), 1e-13);
+}
+
+TEST(Problem, JacobianOperatorMatchesPerElementJacobians) {
+  const Mesh mesh = make_tet_box(2, 2, 1);
+  const Problem p = make_problem(mesh);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd X = mesh.V;
+  for (int i = 0; i < X.size(); ++i) X(i) += 0.1 * u(rng);
+  Eigen::VectorXd q(X.size());
+  for (int v = 0; v < X.rows(); ++v) q.segment(3 * v, 3) = X.row(v).transpose();
+  const Eigen::VectorXd J = p.jacobian_operator() * q;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const Eigen::MatrixXd Je = p.jacobian(e, X);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(J(e * 9 + r * 3 + c), Je(r, c), 1e-12);
+  }
+}
+
+TEST(Problem, ReducedSystemEliminatesFixedVertices) {
+  const Mesh mesh = make_grid(3, 3);
+  Problem p = make_problem(mesh);
+  p.fix({{0, Eigen::Vector2d(0.1, 0.2)}, {15, Eigen::Vector2d(1.5, 0.9)}});
+  EXPECT_EQ(p.num_free(), 14);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd x(p.num_free() * 2);
+  for (int i = 0; i < x.size(); ++i) x(i) = u(rng);
+  const Eigen::MatrixXd X = p.with_free_dofs(x);
+  EXPECT_LT((p.free_dofs(X) - x).norm(), 1e-15);
+  const auto red = p.reduced();
+  const Eigen::VectorXd r = red.G * x - red.h;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const Eigen::MatrixXd D = p.jacobian(e, X) - p.target(e);
+    for (int i = 0; i < 2; ++i)
+      for (int c = 0; c < 2; ++c) EXPECT_NEAR(r(e * 4 + i * 2 + c), D(i, c), 1e-12);
+  }
+}
+
+TEST(Problem, TetsAffineMaps) {
+  const Mesh mesh = make_tet_box(2, 1, 1, 2.0, 1.0, 1.0);
+  const Problem p = make_problem(mesh);
+  EXPECT_EQ(p.image_dim, 3);
+  EXPECT_NEAR(p.weights.sum(), 2.0, 1e-14);
+  const Eigen::Matrix3d A = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix() *
+                            Eigen::Vector3d(1.5, 1.0, 0.8).asDiagonal();
+  const Eigen::MatrixXd X = apply_affine(mesh.V, A, Eigen::Vector3d(1, 2, 3));
+  for (int e = 0; e < p.num_elements(); ++e) {
+    EXPECT_LT((p.jacobian(e, X) - A).norm(), 1e-13);
+    EXPECT_NEAR(distortion(Measure::Arap, p.jacobian(e, X), p.target(e)), std::sqrt(0.25 + 0.04), 1e-12);
+  }
+}
+
+TEST(Problem, SurfaceTrianglesGetIsometricFrames) {
+  // A grid bent into 3D by a rigid motion: every local-frame Jacobian of the flattened
+  // (original 2D) positions is a rotation, so ARAP is 0 and areas are preserved.
+  const Mesh flat = make_grid(3, 3);
+  Mesh surface;
+  surface.F = flat.F;
+  surface.V.resize(flat.V.rows(), 3);
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  for (int v = 0; v < flat.V.rows(); ++v) surface.V.row(v) = (Q * Eigen::Vector3d(flat.V(v, 0), flat.V(v, 1), 0)).transpose();
+  const Problem p = make_problem(surface);
+  EXPECT_EQ(p.image_dim, 2);
+  EXPECT_NEAR(p.weights.sum(), 1.0, 1e-13);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const Eigen::MatrixXd J = p.jacobian(e, flat.V);
+    EXPECT_NEAR(distortion(Measure::Arap, J, p.target(e)), 0.0, 1e-12);
+    EXPECT_NEAR(J.determinant(), 1.0, 1e-12);
+  }
+}
+
+TEST(Problem, HandlesAreChecked) {
+  Problem p = make_problem(make_grid(2, 2));
+  EXPECT_THROW(p.fix({{9, Eigen::Vector2d(0, 0)}}), InputError);
+  EXPECT_THROW(p.fix({{1, Eigen::Vector3d(0, 0, 0)}}), InputError);
+  try {
+    p.fix({{-1, Eigen::Vector2d(0, 0)}});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex -1"), std::string::npos);
+  }
+}
+
+}  // namespace
