@@ -45,6 +45,29 @@ std::vector<int> unanchored_components(const Problem& p) {
 L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
   if (p.has_equalities())
     throw InputError("the L2 solver does not handle linear equality constraints yet");
+  assemble(p, p.weights);
+  if (K_.rows() == 0) return;
+  const std::vector<int> loose = unanchored_components(p);
+  if (!loose.empty()) {
+    status_ = SolveStatus::NumericalError;
+    message_ = "the map is not determined: the part of the mesh containing vertex " + std::to_string(loose.front()) +
+               " has no fixed vertex (" + std::to_string(loose.size()) + " such part(s))";
+    return;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  cholesky_.analyze(K_);
+  analyze_s_ = seconds_since(t0);
+  factorize();
+}
+
+bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights) {
+  if (status_ != SolveStatus::Solved && !cholesky_.analyzed()) return false;
+  assemble(p, element_weights);
+  return K_.rows() == 0 || factorize();
+}
+
+void L2Solver::assemble(const Problem& p, const Eigen::VectorXd& element_weights) {
+  element_weights_ = element_weights;
   const int c = p.corners(), F = p.num_free();
   std::vector<Eigen::Triplet<double>> free_t, fixed_t;
   free_t.reserve(static_cast<size_t>(p.num_elements()) * c * c);
@@ -54,7 +77,7 @@ L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
       const int fi = free_index_[p.elements(e, i)];
       if (fi < 0) continue;
       for (int j = 0; j < c; ++j) {
-        const double kij = p.weights(e) * g.row(i).dot(g.row(j));
+        const double kij = element_weights(e) * g.row(i).dot(g.row(j));
         const int vj = p.elements(e, j), fj = free_index_[vj];
         if (fj >= 0) {
           if (fj <= fi) free_t.emplace_back(fi, fj, kij);  // lower triangle
@@ -68,23 +91,15 @@ L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
   K_.setFromTriplets(free_t.begin(), free_t.end());
   K_fixed_.resize(F, p.num_vertices);
   K_fixed_.setFromTriplets(fixed_t.begin(), fixed_t.end());
-  if (F == 0) return;
-  const std::vector<int> loose = unanchored_components(p);
-  if (!loose.empty()) {
-    status_ = SolveStatus::NumericalError;
-    message_ = "the map is not determined: the part of the mesh containing vertex " + std::to_string(loose.front()) +
-               " has no fixed vertex (" + std::to_string(loose.size()) + " such part(s))";
-    return;
-  }
-  auto t0 = std::chrono::steady_clock::now();
-  cholesky_.analyze(K_);
-  analyze_s_ = seconds_since(t0);
-  t0 = std::chrono::steady_clock::now();
-  if (!cholesky_.factorize(K_)) {
-    status_ = SolveStatus::NumericalError;
-    message_ = "the L2 system is not positive definite (degenerate elements?)";
-  }
+}
+
+bool L2Solver::factorize() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool ok = cholesky_.factorize(K_);
   factorize_s_ = seconds_since(t0);
+  status_ = ok ? SolveStatus::Solved : SolveStatus::NumericalError;
+  message_ = ok ? "" : "the L2 system is not positive definite (degenerate elements?)";
+  return ok;
 }
 
 Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
@@ -98,7 +113,7 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
     const auto R = p.targets.middleRows(e * n, n);
     for (int i = 0; i < c; ++i) {
       const int fi = free_index_[p.elements(e, i)];
-      if (fi >= 0) B.row(fi).noalias() += p.weights(e) * (R * p.gradients.row(e * c + i).transpose()).transpose();
+      if (fi >= 0) B.row(fi).noalias() += element_weights_(e) * (R * p.gradients.row(e * c + i).transpose()).transpose();
     }
   }
   B.noalias() -= K_fixed_ * p.positions;

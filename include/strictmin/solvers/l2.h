@@ -21,6 +21,9 @@ class L2Solver {
  public:
   // Assembles and factorizes K for the problem's mesh, weights and fixed vertices.
   explicit L2Solver(const Problem& problem);
+  // New per-element weights (#E, e.g. A_T w_T for IRLS): K is reassembled and factorized
+  // again, reusing the symbolic analysis. False when K is not positive definite.
+  bool reweight(const Problem& problem, const Eigen::VectorXd& element_weights);
   // Solved-for positions (#V by image_dim) for the problem's current targets and fixed
   // positions (same mesh and fixed set as at construction).
   Eigen::MatrixXd solve(const Problem& problem) const;
@@ -31,7 +34,11 @@ class L2Solver {
   const Eigen::SparseMatrix<double>& matrix() const { return K_; }
 
  private:
+  void assemble(const Problem& problem, const Eigen::VectorXd& element_weights);
+  bool factorize();
+
   std::vector<int> free_index_;
+  Eigen::VectorXd element_weights_;
   Eigen::SparseMatrix<double> K_;       // free by free
   Eigen::SparseMatrix<double> K_fixed_; // free by all vertices: couplings to fixed ones
   SparseCholesky cholesky_;

@@ -8,6 +8,14 @@
 //
 // Returns the map, k (Result.distortion.maxCoeff() over free elements), a certified lower
 // bound from the dual (no map does better), iterations, status and per-iteration history.
+//
+// Method (src/solvers/socp/): primal-dual path-following interior-point method with
+// Nesterov-Todd scaling and Mehrotra predictor-corrector, normal equations on CHOLMOD with
+// the dense k column eliminated by bordering (one symbolic analysis per solve). Starts from
+// the L2 map. Fixed bounds that the start misses are first checked by a phase-1 solve
+// (min t s.t. D_T <= k_T + t), which certifies infeasibility. Elements whose vertices are
+// all fixed are constants: a lower bound on k, or a bound that must already hold. Linear
+// equalities are supported (penalty elimination with refinement).
 #include <Eigen/Core>
 #include <functional>
 
@@ -28,6 +36,19 @@ struct LinfOptions {
   bool minimize_l2_among_optimal = false;
   // Called after every iteration (progress on stderr in the CLI).
   std::function<void(const IterationRecord&)> progress;
+
+  // --- added by the solver (defaults are fine) ---
+  // Fixed bounds that the best map misses by more than infeasibility_tolerance *
+  // max(1, k_T) make the problem infeasible (decided by a phase-1 solve, certified).
+  // Smaller misses are absorbed: those bounds are relaxed by the miss.
+  double infeasibility_tolerance = 1e-7;
+  // minimize_l2_among_optimal solves with D_T <= k* + l2_slack * max(1, k*) (the set of
+  // exact minimizers has no interior, which an interior-point method needs).
+  double l2_slack = 1e-6;
+  // Interior-point internals (see solvers/socp/settings.h).
+  double step_fraction = 0.99;
+  double regularization = 1e-13;
+  int refinement_steps = 4;
 };
 
 Result solve_linf(const Problem& problem, const LinfOptions& options = {});

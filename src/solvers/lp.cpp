@@ -1,0 +1,115 @@
+#include "strictmin/solvers/lp.h"
+
+#include <Eigen/Dense>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "strictmin/solvers/element_assembly.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/sparse_cholesky.h"
+
+namespace strictmin {
+namespace {
+
+// sum_T A_T (||r_T|| / scale)^q for the residuals r = G x - h (blocks of nm entries).
+double lp_energy(const Eigen::VectorXd& r, const Eigen::VectorXd& weights, int nm, double q, double scale) {
+  double f = 0;
+  for (Eigen::Index e = 0; e < weights.size(); ++e) f += weights(e) * std::pow(r.segment(e * nm, nm).norm() / scale, q);
+  return f;
+}
+
+}  // namespace
+
+Result solve_lp(const Problem& p, const LpOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  Result r = solve_l2(p);
+  if (!r.ok() || options.p <= 2 || p.num_free() == 0) return r;
+
+  const int nm = p.jacobian_size();
+  const Problem::Reduced red = p.reduced();
+  const ElementAssembler assembler(p);
+  SparseCholesky cholesky;
+  Eigen::SparseMatrix<double> H;
+  Eigen::VectorXd x = p.free_dofs(r.positions);
+  int iteration = 0;
+  bool converged = true;
+
+  std::vector<double> stages;
+  for (double q = 4; q < options.p; q *= 2) stages.push_back(q);
+  stages.push_back(options.p);
+
+  for (const double q : stages) {
+    Eigen::VectorXd res = red.G * x - red.h;
+    double scale = 0;
+    for (int e = 0; e < p.num_elements(); ++e) scale = std::max(scale, res.segment(e * nm, nm).norm());
+    if (!(scale > 0)) break;  // every element at zero distortion
+    bool stage_done = false;
+    while (!stage_done && iteration < options.max_iterations) {
+      // Gradient and Hessian of f = sum A (s/K)^q with s = ||r_T||:
+      // grad = sum c_T B^T r_T, Hessian = sum B^T c_T (I + (q-2) r r^T / s^2) B, c_T = A q s^(q-2) / K^q.
+      const double f = lp_energy(res, p.weights, nm, q, scale);
+      Eigen::VectorXd grad = Eigen::VectorXd::Zero(x.size());
+      Eigen::VectorXd coef(p.num_elements());
+      for (int e = 0; e < p.num_elements(); ++e) {
+        const double s = res.segment(e * nm, nm).norm();
+        coef(e) = p.weights(e) * q * std::pow(s / scale, q - 2) / (scale * scale);
+        assembler.add_transpose_product(e, coef(e) * res.segment(e * nm, nm), grad);
+      }
+      assembler.assemble(
+          [&](int e, Eigen::Ref<Eigen::MatrixXd> W) {
+            const Eigen::VectorXd re = res.segment(e * nm, nm);
+            const double s2 = re.squaredNorm();
+            W.diagonal().setConstant(coef(e));
+            if (s2 > 0) W.noalias() += coef(e) * (q - 2) / s2 * re * re.transpose();
+          },
+          H);
+      // A tiny diagonal shift keeps H positive definite where elements reach D_T = 0.
+      const double shift = 1e-12 * H.diagonal().cwiseAbs().maxCoeff();
+      for (int i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
+      if (!cholesky.analyzed()) cholesky.analyze(H);
+      if (!cholesky.factorize(H)) {
+        r.status = SolveStatus::NumericalError;
+        r.message = "L_p: the Newton system is not positive definite";
+        converged = false;
+        break;
+      }
+      const Eigen::VectorXd dx = -cholesky.solve(grad);
+      const double slope = grad.dot(dx);
+      ++iteration;
+      if (-slope / 2 <= options.tolerance * f) stage_done = true;
+      // Backtracking (Armijo) line search on f.
+      double t = 1;
+      Eigen::VectorXd trial_res;
+      for (int k = 0; k < 60; ++k, t *= 0.5) {
+        trial_res = red.G * (x + t * dx) - red.h;
+        if (lp_energy(trial_res, p.weights, nm, q, scale) <= f + 0.25 * t * slope) break;
+      }
+      x += t * dx;
+      res = trial_res;
+      IterationRecord rec;
+      rec.iteration = iteration;
+      for (int e = 0; e < p.num_elements(); ++e) rec.max_distortion = std::max(rec.max_distortion, res.segment(e * nm, nm).norm());
+      rec.gap = -slope / 2 / std::max(f, 1e-300);
+      rec.time_s = elapsed();
+      r.history.push_back(rec);
+      if (options.progress) options.progress(rec);
+    }
+    if (!converged) break;
+    if (!stage_done) {
+      converged = false;
+      r.status = SolveStatus::MaxIterations;
+      r.message = "L_p: " + std::to_string(options.max_iterations) + " Newton iterations did not converge at p = " +
+                  std::to_string(q);
+      break;
+    }
+  }
+  r.positions = p.with_free_dofs(x);
+  r.distortion = field_deviation(p, r.positions);
+  r.iterations = iteration;
+  r.time_s = elapsed();
+  return r;
+}
+
+}  // namespace strictmin
