@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "solver_options.h"
 #include "strictmin/io/handles_io.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
@@ -14,32 +15,19 @@ namespace strictmin::cli {
 namespace {
 
 struct DeformArgs {
-  std::string mesh, handles, example, output, measure = "fd", method = "l2";
-  double gap = 1e-8;
-  int max_iterations = 100;
+  std::string mesh, handles, example, output, measure = "fd";
+  SolverArgs solver;
   OutputOptions out;
 };
-
-std::string format_iteration(const IterationRecord& r) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "  linf iter %3d  k = %.10g  lower bound = %.10g  gap = %.2e  %.2f s", r.iteration,
-                r.max_distortion, r.lower_bound, r.gap, r.time_s);
-  return buf;
-}
 
 int run_deform(const DeformArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto threads = limit_threads(a.out.threads);
   DeformOptions options;
-  const auto method = parse_method(a.method);
-  if (!method) throw InputError("unknown method '" + a.method + "' (use one of: " + method_list() + ")");
+  options.solver = make_solver_options(a.solver, a.out);
   const auto measure = parse_measure(a.measure);
   if (!measure) throw InputError("unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
-  options.method = *method;
   options.measure = *measure;
-  options.linf.gap_tolerance = a.gap;
-  options.linf.max_iterations = a.max_iterations;
-  options.linf.progress = [&](const IterationRecord& r) { progress(a.out, format_iteration(r)); };
 
   Mesh mesh;
   std::vector<Handle> handles;
@@ -61,7 +49,7 @@ int run_deform(const DeformArgs& a) {
     input = a.mesh;
   }
   progress(a.out, "deform: " + std::to_string(mesh.num_elements()) + " elements, " + std::to_string(handles.size()) +
-                      " handles, method " + a.method + ", measure " + a.measure);
+                      " handles, method " + a.solver.method + ", measure " + a.measure);
 
   const DeformOutcome d = deform(mesh, handles, options);
   if (!d.result.ok()) progress(a.out, "warning: " + status_name(d.result.status) + ": " + d.result.message);
@@ -74,7 +62,7 @@ int run_deform(const DeformArgs& a) {
   s["task"] = "deform";
   s["input"] = input;
   s["output"] = a.output;
-  s["method"] = method_name(options.method);
+  s["method"] = method_name(options.solver.method);
   s["measure"] = measure_name(options.measure);
   s["elements"] = mesh.num_elements();
   s["vertices"] = mesh.num_vertices();
@@ -87,8 +75,7 @@ int run_deform(const DeformArgs& a) {
   s["flipped"] = d.measured.stats.flipped;
   s["status"] = status_name(d.result.status);
   if (!d.result.message.empty()) s["message"] = d.result.message;
-  s["iterations"] = d.result.iterations;
-  if (options.method == Method::Linf) s["lower_bound"] = number_or_null(d.result.lower_bound);
+  add_solver_summary(s, options.solver, d.result);
   s["solver_time_s"] = d.result.time_s;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);
@@ -113,12 +100,8 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "'vertex x y [z]' (0-based vertex indices)")
       ->type_name("FILE");
   cmd->add_option("--measure", args->measure, "Distortion measure: fd (field deviation ||J - I||)")->capture_default_str();
-  cmd->add_option("--method", args->method,
-                  "l2 (least squares, fast, concentrates distortion) or linf (least maximum distortion)")
-      ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
-  cmd->add_option("--gap", args->gap, "linf: stop at this relative duality gap")->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "linf: iteration cap")->capture_default_str();
+  add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   cmd->callback([args, &exit_code] { exit_code = run_deform(*args); });
 }

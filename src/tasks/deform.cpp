@@ -19,10 +19,7 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (!loose.empty())
     throw InputError("the part of the mesh containing vertex " + std::to_string(loose.front()) +
                      " has no handle, so its position is not determined; add a handle there");
-  switch (options.method) {
-    case Method::L2: out.result = solve_l2(out.problem); break;
-    case Method::Linf: out.result = solve_linf(out.problem, options.linf); break;
-  }
+  out.result = run_method(out.problem, options.solver);
   out.deformed = mesh;
   out.deformed.V = out.result.positions;
   out.measured = map_distortion(mesh, corner_images(mesh.F, out.result.positions), options.measure);

@@ -1,21 +1,66 @@
 #include "strictmin/tasks/method.h"
 
+#include "strictmin/io/input_error.h"
+#include "strictmin/solvers/l2.h"
+
 namespace strictmin {
+namespace {
+
+constexpr Method kMethods[] = {Method::L2,    Method::Linf,   Method::Lp,   Method::Irls,
+                               Method::Relax, Method::Direct, Method::Exact};
+
+}  // namespace
 
 std::string method_name(Method m) {
   switch (m) {
     case Method::L2: return "l2";
     case Method::Linf: return "linf";
+    case Method::Lp: return "lp";
+    case Method::Irls: return "irls";
+    case Method::Relax: return "relax";
+    case Method::Direct: return "direct";
+    case Method::Exact: return "exact";
   }
   return "?";
 }
 
 std::optional<Method> parse_method(const std::string& name) {
-  if (name == "l2") return Method::L2;
-  if (name == "linf") return Method::Linf;
+  for (Method m : kMethods)
+    if (method_name(m) == name) return m;
   return std::nullopt;
 }
 
-std::string method_list() { return "l2, linf"; }
+std::string method_list() {
+  std::string out;
+  for (Method m : kMethods) out += (out.empty() ? "" : ", ") + method_name(m);
+  return out;
+}
+
+Result run_method(const Problem& p, const SolverOptions& o) {
+  switch (o.method) {
+    case Method::L2: return solve_l2(p);
+    case Method::Linf: return solve_linf(p, o.linf);
+    case Method::Lp: return solve_lp(p, o.lp);
+    case Method::Irls: return solve_irls(p, o.irls);
+    case Method::Direct: return solve_direct(p, o.direct);
+    case Method::Exact: return solve_exact(p, o.exact);
+    case Method::Relax: {
+      if (o.relax_init == Method::Relax) throw InputError("relax cannot start from relax (--init l2|lp|irls|linf)");
+      SolverOptions init = o;
+      init.method = o.relax_init;
+      const Result start = run_method(p, init);
+      if (!start.ok() && start.status != SolveStatus::MaxIterations) return start;
+      Result r = relax(p, start.positions, o.relax);
+      r.time_s += start.time_s;
+      r.lower_bound = start.lower_bound;
+      if (!start.ok()) {
+        r.status = start.status;
+        r.message = "initial " + method_name(o.relax_init) + ": " + start.message;
+      }
+      return r;
+    }
+  }
+  return solve_l2(p);
+}
 
 }  // namespace strictmin

@@ -9,7 +9,6 @@
 #include "strictmin/mesh/handle.h"
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
-#include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/map_distortion.h"
 #include "strictmin/tasks/method.h"
@@ -17,9 +16,8 @@
 namespace strictmin {
 
 struct DeformOptions {
-  Method method = Method::L2;
+  SolverOptions solver;  // the method and its options
   Measure measure = Measure::FieldDeviation;
-  LinfOptions linf;
 };
 
 struct DeformOutcome {

@@ -1,14 +1,37 @@
 #pragma once
-// The optimization methods a task can run.
+// The optimization methods every task can run, their options, and one dispatch.
 #include <optional>
 #include <string>
 
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/irls.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/lp.h"
+#include "strictmin/solvers/relax.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/solvers/strict.h"
+
 namespace strictmin {
 
-enum class Method { L2, Linf };
+enum class Method { L2, Linf, Lp, Irls, Relax, Direct, Exact };
 
-std::string method_name(Method m);  // "l2", "linf"
+std::string method_name(Method m);  // "l2", "linf", "lp", "irls", "relax", "direct", "exact"
 std::optional<Method> parse_method(const std::string& name);
-std::string method_list();  // "l2, linf" for help and error messages
+std::string method_list();  // for help and error messages
+
+struct SolverOptions {
+  Method method = Method::L2;
+  LinfOptions linf;
+  LpOptions lp;
+  IrlsOptions irls;
+  RelaxOptions relax;
+  Method relax_init = Method::Linf;  // relax starts from this method's result (not relax itself)
+  DirectOptions direct;
+  ExactOptions exact;
+};
+
+// Runs options.method on the problem. For relax, the result's iterations are the sweeps
+// and time_s includes the initial solve.
+Result run_method(const Problem& problem, const SolverOptions& options);
 
 }  // namespace strictmin

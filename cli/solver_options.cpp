@@ -1,0 +1,92 @@
+#include "solver_options.h"
+
+#include <cstdio>
+
+#include "strictmin/io/input_error.h"
+
+namespace strictmin::cli {
+void add_solver_options(CLI::App& cmd, SolverArgs& a) {
+  cmd.add_option("--method", a.method,
+                 "l2 (least squares: fast, concentrates distortion), linf (least maximum, certified), "
+                 "relax / direct / exact (strict minimizer: least maximum, then least area at each lower level), "
+                 "lp / irls (the baselines)")
+      ->capture_default_str();
+  auto* g = cmd.add_option_group("Method options");
+  g->add_option("--gap", a.gap, "linf: stop at this relative duality gap")->capture_default_str();
+  g->add_option("--max-iterations", a.max_iterations, "linf: interior-point iteration cap")->capture_default_str();
+  g->add_flag("--linf-min-l2", a.linf_min_l2,
+              "linf: among the L-infinity optima, return the one with the least L2 distortion (a second solve)");
+  g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(CLI::Range(2.0, 1e6));
+  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves")->capture_default_str();
+  g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices")->capture_default_str();
+  g->add_option("--move-tolerance", a.move_tolerance, "relax: stop when no vertex moves more than this")
+      ->capture_default_str();
+  g->add_option("--init", a.init, "relax: start from l2, lp, irls or linf")->capture_default_str();
+  g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum")
+      ->capture_default_str();
+  g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this")->capture_default_str();
+  g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this")
+      ->capture_default_str();
+}
+
+SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {
+  SolverOptions o;
+  const auto method = parse_method(a.method);
+  if (!method) throw InputError("unknown method '" + a.method + "' (use one of: " + method_list() + ")");
+  const auto init = parse_method(a.init);
+  if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
+    throw InputError("unknown --init '" + a.init + "' (use l2, lp, irls or linf)");
+  o.method = *method;
+  o.relax_init = *init;
+  o.linf.gap_tolerance = a.gap;
+  o.linf.max_iterations = a.max_iterations;
+  o.linf.minimize_l2_among_optimal = a.linf_min_l2;
+  o.lp.p = a.p;
+  o.irls.iterations = a.irls_iterations;
+  o.relax.sweeps = a.sweeps;
+  o.relax.move_tolerance = a.move_tolerance;
+  o.direct.delta_k = a.delta_k;
+  o.direct.k_min = a.k_min;
+  o.direct.linf = o.linf;
+  o.exact.max_elements = a.exact_max_elements;
+  o.exact.linf = o.linf;
+  if (!out.quiet) {
+    o.linf.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "  linf  iter %3d  k %.10g  lower bound %.10g  gap %.2e  %.2f s\n", r.iteration,
+                   r.max_distortion, r.lower_bound, r.gap, r.time_s);
+    };
+    o.lp.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "  lp    iter %3d  max %.8g  decrement %.2e  %.2f s\n", r.iteration, r.max_distortion,
+                   r.gap, r.time_s);
+    };
+    o.irls.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "  irls  iter %3d  max %.8g  %.2f s\n", r.iteration, r.max_distortion, r.time_s);
+    };
+    o.relax.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "  relax sweep %3d  max %.8g  largest move %.2e  %.2f s\n", r.iteration, r.max_distortion,
+                   r.gap, r.time_s);
+    };
+    auto strict_progress = [](const StrictStep& s) {
+      std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d  %.2f s\n", s.step, s.k,
+                   s.fixed_now, s.fixed_total, s.solves, s.time_s);
+    };
+    o.direct.progress = strict_progress;
+    o.exact.progress = strict_progress;
+  }
+  return o;
+}
+
+void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result& r) {
+  s["iterations"] = r.iterations;
+  if (o.method == Method::Linf || o.method == Method::Direct || o.method == Method::Exact ||
+      (o.method == Method::Relax && o.relax_init == Method::Linf))
+    s["lower_bound"] = number_or_null(r.lower_bound);
+  if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
+  if (o.method == Method::Relax) {
+    s["sweeps"] = r.iterations;
+    s["init"] = method_name(o.relax_init);
+  }
+  if (o.method == Method::Lp) s["p"] = o.lp.p;
+}
+
+}  // namespace strictmin::cli

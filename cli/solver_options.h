@@ -1,0 +1,40 @@
+#pragma once
+// The --method option and every method's options, shared by all tasks.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "common.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin::cli {
+
+struct SolverArgs {
+  std::string method = "l2";
+  // linf
+  double gap = 1e-8;
+  int max_iterations = 100;
+  bool linf_min_l2 = false;
+  // lp, irls
+  double p = 16;
+  int irls_iterations = 50;
+  // relax
+  int sweeps = 50;
+  double move_tolerance = 0;
+  std::string init = "linf";
+  // direct, exact
+  double delta_k = 1e-3;
+  double k_min = 0.1;
+  int exact_max_elements = 3000;
+};
+
+void add_solver_options(CLI::App& cmd, SolverArgs& args);
+
+// Parses the method names and wires progress reporting (stderr unless --quiet).
+// Throws InputError for an unknown method.
+SolverOptions make_solver_options(const SolverArgs& args, const OutputOptions& out);
+
+// Summary keys that depend on the method (lower_bound, iterations, levels, ...).
+void add_solver_summary(nlohmann::json& summary, const SolverOptions& options, const Result& result);
+
+}  // namespace strictmin::cli

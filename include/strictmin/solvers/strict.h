@@ -1,0 +1,50 @@
+#pragma once
+// Strict minimizers (paper Section 4-5): the lexicographically smallest area-weighted
+// distortion distribution, approximated level by level with L-infinity solves.
+//
+// direct (Algorithm 2): solve (1) with the bounds fixed so far; fix every free element
+//   within delta_k of the optimum k at k; repeat until all are fixed or k <= k_min. The
+//   elements below k_min keep the last solution's values.
+// exact (Algorithm 1): at each level, find the essential set exactly (the elements that no
+//   optimal solution lowers), one extra L-infinity solve per undecided candidate; the
+//   reference the others are compared with, for small meshes only.
+#include <Eigen/Core>
+#include <functional>
+
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/result.h"
+
+namespace strictmin {
+
+struct StrictStep {
+  int step = 0;          // 1-based
+  double k = 0;          // optimal value of this level
+  int fixed_now = 0;     // elements fixed at this step
+  int fixed_total = 0;   // elements fixed so far
+  int solves = 0;        // L-infinity solves so far
+  double time_s = 0;
+};
+
+struct DirectOptions {
+  double delta_k = 1e-3;
+  double k_min = 0.1;
+  int max_steps = 100000;
+  LinfOptions linf;  // tolerances of every L-infinity solve (progress is not forwarded)
+  std::function<void(const StrictStep&)> progress;
+};
+
+struct ExactOptions {
+  double tolerance = 1e-6;  // an element is lowered when it ends below k - tolerance
+  int max_elements = 3000;  // refuse larger meshes (see docs/strict.md)
+  LinfOptions linf;
+  std::function<void(const StrictStep&)> progress;
+};
+
+// Result.iterations = steps (levels); history has one record per step (k in
+// max_distortion); Result.lower_bound = the first level's certified bound.
+Result solve_direct(const Problem& problem, const DirectOptions& options = {});
+// Throws InputError when the problem has more than options.max_elements elements.
+Result solve_exact(const Problem& problem, const ExactOptions& options = {});
+
+}  // namespace strictmin
