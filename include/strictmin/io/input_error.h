@@ -11,7 +11,7 @@ class InputError : public std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
-// "file:line: reason" (line <= 0 leaves the line out).
+// "file: line N: reason" (line <= 0 leaves the line out, an empty file name the file).
 std::string located(const std::string& file, long line, const std::string& reason);
 
 }  // namespace strictmin

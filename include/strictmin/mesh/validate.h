@@ -15,6 +15,10 @@ namespace strictmin {
 // edge traversed the same way by both faces; planar triangles and tets: signed areas /
 // volumes of both signs). Unreferenced vertices are kept (their indices stay valid) and
 // reported in `warnings`. `source` names the file in messages.
+// Also rejected (after the zero-measure check): two elements over the same vertex set.
+// Orientation: an all-clockwise planar mesh is accepted silently; all-negative tets are
+// rejected ("all tets are inverted ... swap two corners"). Degenerate means area <=
+// 1e-14 d^2 or volume <= 1e-14 d^3, d the bounding-box diagonal of the used vertices.
 void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings = nullptr);
 
 // Vertices used by no element.
