@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/handles_io.h"
 #include "strictmin/io/input_error.h"
@@ -15,9 +16,12 @@ namespace strictmin::cli {
 namespace {
 
 struct DeformArgs {
-  std::string mesh, handles, example, output, measure = "fd";
+  std::string mesh, handles, example, output, measure = "fd", start = "l2";
+  int lg_iterations = 100;
+  double lg_tolerance = 1e-4;
   SolverArgs solver;
   OutputOptions out;
+  ReportArgs report;
 };
 
 int run_deform(const DeformArgs& a) {
@@ -28,6 +32,15 @@ int run_deform(const DeformArgs& a) {
   const auto measure = parse_measure(a.measure);
   if (!measure) throw InputError("unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
   options.measure = *measure;
+  if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
+  options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
+  options.local_global.max_iterations = a.lg_iterations;
+  options.local_global.relative_change = a.lg_tolerance;
+  if (!a.out.quiet)
+    options.local_global.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "local-global iter %3d  max %.8g  relative change %.2e  %.2f s\n", r.iteration,
+                   r.max_distortion, r.gap, r.time_s);
+    };
 
   Mesh mesh;
   std::vector<Handle> handles;
@@ -62,6 +75,7 @@ int run_deform(const DeformArgs& a) {
   s["task"] = "deform";
   s["input"] = input;
   s["output"] = a.output;
+  s["distortion_file"] = a.out.distortion;
   s["method"] = method_name(options.solver.method);
   s["measure"] = measure_name(options.measure);
   s["elements"] = mesh.num_elements();
@@ -76,9 +90,17 @@ int run_deform(const DeformArgs& a) {
   s["status"] = status_name(d.result.status);
   if (!d.result.message.empty()) s["message"] = d.result.message;
   add_solver_summary(s, options.solver, d.result);
+  if (options.measure == Measure::Arap || options.measure == Measure::Asap) {
+    s["local_global_iterations"] = d.result.iterations;
+    s["stop_reason"] = d.result.message;
+    nlohmann::json history = nlohmann::json::array();
+    for (const auto& r : d.result.history) history.push_back({{"iteration", r.iteration}, {"max", r.max_distortion}});
+    s["history"] = history;
+  }
   s["solver_time_s"] = d.result.time_s;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);
+  if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_task_report(a.report, s, input, mesh, handles, d)));
   progress(a.out, "deform: max distortion " + std::to_string(d.measured.stats.max) + ", L2 " +
                       std::to_string(d.measured.stats.l2) + ", " + std::to_string(d.measured.stats.flipped) +
                       " flipped, " + status_name(d.result.status));
@@ -99,10 +121,19 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "Positional constraints: JSON {\"handles\":[{\"vertex\":i,\"position\":[x,y]}]} or text lines "
                   "'vertex x y [z]' (0-based vertex indices)")
       ->type_name("FILE");
-  cmd->add_option("--measure", args->measure, "Distortion measure: fd (field deviation ||J - I||)")->capture_default_str();
+  cmd->add_option("--measure", args->measure,
+                  "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method)")
+      ->capture_default_str();
+  cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")
+      ->capture_default_str();
+  cmd->add_option("--lg-tolerance", args->lg_tolerance,
+                  "arap/asap: stop when the maximum changes by less than this (relative)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
+  add_report_options(*cmd, args->report);
   cmd->callback([args, &exit_code] { exit_code = run_deform(*args); });
 }
 

@@ -31,9 +31,10 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
   linf.progress = nullptr;
   Result out;
   double k = INFINITY;
+  out.positions = options.start.size() ? options.start : p.positions;
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     linf.element_bounds = bounds;
-    Result r = solve_linf(p, linf);
+    Result r = options.level_solver ? options.level_solver(p, linf, out.positions) : solve_linf(p, linf);
     if (step == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
     out.distortion = r.distortion;

@@ -8,8 +8,9 @@ namespace strictmin {
 DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options) {
   if (mesh.element_type() == ElementType::Triangle && !mesh.is_planar())
     throw InputError("deform needs a planar triangle mesh (every z equal) or a tet mesh; this is a 3D surface");
-  if (options.measure != Measure::FieldDeviation)
-    throw InputError("deform minimizes field deviation (--measure fd); '" + measure_name(options.measure) +
+  const bool local_global_measure = options.measure == Measure::Arap || options.measure == Measure::Asap;
+  if (options.measure != Measure::FieldDeviation && !local_global_measure)
+    throw InputError("deform minimizes fd, arap or asap; '" + measure_name(options.measure) +
                      "' is not available for deformation yet");
   if (handles.empty()) throw InputError("deform needs at least one handle (--handles FILE)");
   DeformOutcome out;
@@ -19,7 +20,17 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (!loose.empty())
     throw InputError("the part of the mesh containing vertex " + std::to_string(loose.front()) +
                      " has no handle, so its position is not determined; add a handle there");
-  out.result = run_method(out.problem, options.solver);
+  if (local_global_measure) {
+    LocalGlobalOptions lg = options.local_global;
+    lg.local = options.measure == Measure::Asap ? LocalStep::Similarity : LocalStep::Rotation;
+    // Inverted elements of the starting map do not stop the method (paper Figure 10): the
+    // local step projects them to the closest proper rotation like any other.
+    const Eigen::MatrixXd start = options.start == DeformStart::L2 ? solve_l2(out.problem).positions
+                                                                  : out.problem.positions;
+    out.result = local_global(out.problem, start, options.solver, lg);
+  } else {
+    out.result = run_method(out.problem, options.solver);
+  }
   out.deformed = mesh;
   out.deformed.V = out.result.positions;
   out.measured = map_distortion(mesh, corner_images(mesh.F, out.result.positions), options.measure);

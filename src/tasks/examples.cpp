@@ -26,10 +26,14 @@ Example square() {
 Example bar() {
   const int nx = 64, ny = 8;
   Example ex{"bar", make_grid(nx, ny, 8.0, 1.0), {}};
+  // The right end is lifted by 2 and turned by 45 degrees about its midpoint: a bend.
+  const Eigen::Rotation2Dd turn(M_PI / 4);
+  const Eigen::Vector2d end_mid(8.0, 0.5);
   for (int j = 0; j <= ny; ++j) {
     const int left = j * (nx + 1), right = j * (nx + 1) + nx;
     ex.handles.push_back(handle_at(left, ex.mesh.V.row(left).transpose()));
-    ex.handles.push_back(handle_at(right, ex.mesh.V.row(right).transpose() + Eigen::Vector2d(0.0, 2.0)));
+    const Eigen::Vector2d p = ex.mesh.V.row(right).transpose();
+    ex.handles.push_back(handle_at(right, end_mid + turn * (p - end_mid) + Eigen::Vector2d(0.0, 2.0)));
   }
   return ex;
 }

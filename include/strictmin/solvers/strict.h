@@ -26,12 +26,18 @@ struct StrictStep {
   double time_s = 0;
 };
 
+// Solves one level of the direct algorithm: problem (1) with the bounds in
+// linf.element_bounds, from the previous level's map X. Default: solve_linf.
+using LevelSolver = std::function<Result(const Problem&, const LinfOptions&, const Eigen::MatrixXd& X)>;
+
 struct DirectOptions {
   double delta_k = 1e-3;
   double k_min = 0.1;
   int max_steps = 100000;
   LinfOptions linf;  // tolerances of every L-infinity solve (progress is not forwarded)
   std::function<void(const StrictStep&)> progress;
+  LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
+  Eigen::MatrixXd start;     // map the first level starts from (default: problem.positions)
 };
 
 struct ExactOptions {

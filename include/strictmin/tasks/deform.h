@@ -9,15 +9,21 @@
 #include "strictmin/mesh/handle.h"
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/local_global.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/map_distortion.h"
 #include "strictmin/tasks/method.h"
 
 namespace strictmin {
 
+enum class DeformStart { L2, Rest };
+
 struct DeformOptions {
   SolverOptions solver;  // the method and its options
+  // fd: ||J - I||; arap / asap: local-global iterations around the solver.
   Measure measure = Measure::FieldDeviation;
+  LocalGlobalOptions local_global;  // arap / asap (local is set from measure)
+  DeformStart start = DeformStart::L2;  // arap / asap: start from the L2 fd map or the rest pose
 };
 
 struct DeformOutcome {

@@ -1,0 +1,44 @@
+#pragma once
+// Local-global iterations for ARAP and ASAP (paper Section 5.4, ../shared/paper/NOTES.md)
+// around any solver. The local step sets each element's target to the rotation (ARAP) or
+// similarity (ASAP) closest to its current Jacobian, which never increases any single D_T;
+// the global step runs the chosen solver with the targets fixed. With linf the maximum never
+// increases from one iteration to the next; with relax one sweep is the global step; with
+// direct every level's L-infinity solve becomes local-global iterations.
+//
+// A per-element shape S_T (interpolation: the symmetric factor Y_T(t)) makes the target
+// Q_T S_T with Q_T the rotation closest to J_T S_T^T.
+#include <Eigen/Core>
+#include <functional>
+
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin {
+
+enum class LocalStep { Rotation, Similarity };
+
+struct LocalGlobalOptions {
+  LocalStep local = LocalStep::Rotation;
+  Eigen::MatrixXd shapes;          // #E*n by m (as Problem::targets); empty: identity
+  int max_iterations = 100;
+  double relative_change = 1e-4;   // stop when |max_k - max_{k-1}| <= this * max_{k-1}
+  std::function<void(const IterationRecord&)> progress;
+};
+
+// Sets problem.targets from the map X (#V by n) by the local step.
+void local_step(Problem& problem, const Eigen::MatrixXd& X, const LocalGlobalOptions& options);
+
+// The distortion the local step measures: D_T = min over the local step's family of
+// ||J_T - target||, i.e. ||J_T - local target of J_T||.
+Eigen::VectorXd local_distortion(const Problem& problem, const Eigen::MatrixXd& X, const LocalGlobalOptions& options);
+
+// Runs local-global from X0 with the solver of `solver` (exact is not supported: status
+// numerical-error). Result.distortion is the local distortion (ARAP / ASAP), history has one
+// record per iteration, iterations = local-global iterations; Result.message says whether it
+// stopped on the relative change or the cap.
+Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const SolverOptions& solver,
+                    const LocalGlobalOptions& options);
+
+}  // namespace strictmin

@@ -1,0 +1,130 @@
+#include "strictmin/solvers/local_global.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "strictmin/measures/measures.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/relax.h"
+
+namespace strictmin {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Eigen::MatrixXd local_target(const Problem& p, int e, const Eigen::MatrixXd& J, const LocalGlobalOptions& o) {
+  if (o.local == LocalStep::Similarity) return closest_similarity(J);
+  if (o.shapes.size() == 0) return closest_rotation(J);
+  const Eigen::MatrixXd S = o.shapes.middleRows(e * p.image_dim, p.image_dim);
+  return closest_rotation(J * S.transpose()) * S;
+}
+
+// The largest distortion over the elements without a fixed bound (all of them unless a
+// direct level passes bounds): the quantity the global step minimizes.
+double max_of(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
+  double m = 0;
+  for (Eigen::Index e = 0; e < d.size(); ++e)
+    if (bounds.size() == 0 || !(bounds(e) >= 0)) m = std::max(m, d(e));
+  return m;
+}
+
+}  // namespace
+
+void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, local_target(p, e, p.jacobian(e, X), o));
+}
+
+Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  Eigen::VectorXd d(p.num_elements());
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const Eigen::MatrixXd J = p.jacobian(e, X);
+    d(e) = (J - local_target(p, e, J, o)).norm();
+  }
+  return d;
+}
+
+Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const SolverOptions& solver,
+                    const LocalGlobalOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Problem p = problem;
+  Result out;
+  out.positions = X0;
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (p.fixed[v]) out.positions.row(v) = p.positions.row(v);
+  if (solver.method == Method::Exact) {
+    out.status = SolveStatus::NumericalError;
+    out.message = "the exact strict minimizer is for field deviation only; use direct or relax with ARAP/ASAP";
+    out.distortion = local_distortion(p, out.positions, o);
+    return out;
+  }
+  if (solver.method == Method::Direct) {
+    // Every level of the direct algorithm runs local-global L-infinity iterations; bounds
+    // fixed at earlier levels stay valid because the local step never raises a D_T.
+    DirectOptions direct = solver.direct;
+    direct.start = out.positions;
+    direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
+      SolverOptions inner;
+      inner.method = Method::Linf;
+      inner.linf = linf;
+      LocalGlobalOptions lo = o;
+      lo.progress = nullptr;
+      return local_global(level_problem, X, inner, lo);
+    };
+    Result r = solve_direct(p, direct);
+    r.time_s = seconds_since(t0);
+    return r;
+  }
+  std::unique_ptr<RelaxSweeper> sweeper;
+  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p);
+  double previous = max_of(local_distortion(p, out.positions, o), solver.linf.element_bounds);
+  out.message = "reached the iteration cap";
+  for (int it = 1; it <= o.max_iterations; ++it) {
+    local_step(p, out.positions, o);
+    Result r;
+    if (sweeper) {
+      r.positions = out.positions;
+      sweeper->sweep(p, r.positions);
+    } else {
+      r = run_method(p, solver);
+      if (!r.ok() && r.status != SolveStatus::MaxIterations) {
+        out.status = r.status;
+        out.message = "global step " + std::to_string(it) + ": " + r.message;
+        break;
+      }
+      out.lower_bound = r.lower_bound;
+    }
+    const Eigen::VectorXd d = local_distortion(p, r.positions, o);
+    const double current = max_of(d, solver.linf.element_bounds);
+    // An L-infinity global step cannot raise the maximum beyond its tolerance; keep the
+    // better map if rounding says otherwise.
+    if (solver.method == Method::Linf && current > previous) {
+      out.message = "converged: the maximum stopped decreasing";
+      break;
+    }
+    out.positions = r.positions;
+    out.iterations = it;
+    IterationRecord rec;
+    rec.iteration = it;
+    rec.max_distortion = current;
+    rec.lower_bound = r.lower_bound;
+    rec.gap = previous > 0 ? std::abs(previous - current) / previous : 0.0;
+    rec.time_s = seconds_since(t0);
+    out.history.push_back(rec);
+    if (o.progress) o.progress(rec);
+    const bool small_change = std::abs(previous - current) <= o.relative_change * previous;
+    previous = current;
+    if (small_change) {
+      out.message = "converged: relative change of the maximum below " + std::to_string(o.relative_change);
+      break;
+    }
+  }
+  out.distortion = local_distortion(p, out.positions, o);
+  out.time_s = seconds_since(t0);
+  return out;
+}
+
+}  // namespace strictmin

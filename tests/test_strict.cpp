@@ -1,0 +1,139 @@
+// Strict minimizers: exact (Algorithm 1) against brute force, direct (Algorithm 2) against
+// exact, and both against the strict order's definition.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/report/strict_order.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/strict.h"
+
+using namespace strictmin;
+
+namespace {
+
+// A 4 x 2 grid strip whose only free vertices are the two interior ones (6 and 8), which
+// share no element: their rings are independent 1-vertex problems. Boundary handles are
+// perturbed so that the two rings have different optimal maxima; the L-infinity optimum
+// leaves the lower ring undetermined, the strict minimizer does not.
+Problem two_ring_problem() {
+  const Mesh mesh = make_grid(4, 2, 4.0, 2.0);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> h;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (v == 6 || v == 8) continue;
+    Eigen::Vector2d x = mesh.V.row(v);
+    // Shear the left half strongly, the right half mildly.
+    x(1) += (x(0) <= 2.0 ? 0.5 : 0.1) * std::sin(1.3 * v);
+    x(0) += 0.05 * std::cos(2.1 * v);
+    h.push_back({v, x});
+  }
+  p.fix(h);
+  return p;
+}
+
+// Brute force for one free vertex: the lexicographically smallest sorted distortion vector
+// of its ring (area-weighted strict order), by a grid search refined around the best point.
+Eigen::Vector2d brute_force_vertex(const Problem& p, int vertex, Eigen::MatrixXd X) {
+  std::vector<int> ring;
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int j = 0; j < 3; ++j)
+      if (p.elements(e, j) == vertex) ring.push_back(e);
+  Eigen::VectorXd w(ring.size());
+  for (size_t i = 0; i < ring.size(); ++i) w(i) = p.weights(ring[i]);
+  auto values = [&](const Eigen::Vector2d& q) {
+    X.row(vertex) = q.transpose();
+    Eigen::VectorXd d(ring.size());
+    for (size_t i = 0; i < ring.size(); ++i) d(i) = (p.jacobian(ring[i], X) - p.target(ring[i])).norm();
+    return d;
+  };
+  Eigen::Vector2d best = X.row(vertex).transpose();
+  double radius = 1.0;
+  for (int round = 0; round < 40; ++round, radius *= 0.6) {
+    const Eigen::Vector2d centre = best;
+    for (int i = -10; i <= 10; ++i)
+      for (int j = -10; j <= 10; ++j) {
+        const Eigen::Vector2d q = centre + radius / 10 * Eigen::Vector2d(i, j);
+        if (compare_strict(values(q), values(best), w, 1e-12, 1e-12).order == StrictOrder::Less) best = q;
+      }
+  }
+  return best;
+}
+
+TEST(Exact, MatchesBruteForceOnIndependentRings) {
+  const Problem p = two_ring_problem();
+  const Result exact = solve_exact(p);
+  ASSERT_TRUE(exact.ok()) << exact.message;
+  Eigen::MatrixXd X = exact.positions;
+  for (int v : {6, 8}) X.row(v) = brute_force_vertex(p, v, X).transpose();
+  const Eigen::VectorXd brute = field_deviation(p, X);
+  for (int e = 0; e < p.num_elements(); ++e) EXPECT_NEAR(exact.distortion(e), brute(e), 1e-5) << "element " << e;
+  // The L-infinity solution need not be strict: exact is never more distorting.
+  const Result linf = solve_linf(p);
+  EXPECT_NE(compare_strict(exact.distortion, linf.distortion, p.weights, 1e-6).order, StrictOrder::Greater);
+  EXPECT_NEAR(exact.distortion.maxCoeff(), linf.distortion.maxCoeff(), 1e-6);
+  EXPECT_GE(exact.iterations, 2);
+}
+
+// The paper's Figure 2 at a small size: boundary fixed, centre moved sideways.
+Problem small_square() {
+  const int n = 6;
+  const Mesh mesh = make_grid(n, n);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> h;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector2d x = mesh.V.row(v);
+    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) h.push_back({v, x});
+  }
+  h.push_back({(n / 2) * (n + 1) + n / 2, Eigen::Vector2d(0.65, 0.5)});
+  p.fix(h);
+  return p;
+}
+
+TEST(Direct, AgreesWithExactForSmallDeltaK) {
+  const Problem p = small_square();
+  const Result exact = solve_exact(p);
+  ASSERT_TRUE(exact.ok()) << exact.message;
+  DirectOptions o;
+  o.delta_k = 1e-6;
+  o.k_min = 0;
+  const Result direct = solve_direct(p, o);
+  ASSERT_TRUE(direct.ok()) << direct.message;
+  // Direct fixes elements within delta_k of a level at that level, which overstates their
+  // bound by at most delta_k; with delta_k = 1e-6 and solver gaps of 1e-8 relative, every
+  // element agrees with exact to 1e-4 (levels further down inherit the perturbation).
+  for (int e = 0; e < p.num_elements(); ++e) EXPECT_NEAR(direct.distortion(e), exact.distortion(e), 1e-4) << e;
+  EXPECT_NEAR(direct.distortion.maxCoeff(), exact.distortion.maxCoeff(), 1e-7);
+}
+
+TEST(Direct, IsLessDistortingThanLinfAndStopsAtKMin) {
+  const Problem p = small_square();
+  const Result linf = solve_linf(p);
+  DirectOptions o;
+  o.k_min = 0.05;
+  const Result direct = solve_direct(p, o);
+  ASSERT_TRUE(direct.ok()) << direct.message;
+  EXPECT_NEAR(direct.distortion.maxCoeff(), linf.distortion.maxCoeff(), 1e-6);
+  EXPECT_NE(compare_strict(direct.distortion, linf.distortion, p.weights, 1e-6).order, StrictOrder::Greater);
+  // Every level but the last is above k_min (the loop stops once a level reaches it).
+  for (size_t i = 0; i + 1 < direct.history.size(); ++i) EXPECT_GT(direct.history[i].max_distortion, o.k_min);
+  EXPECT_EQ(direct.iterations, static_cast<int>(direct.history.size()));
+  // Levels decrease.
+  for (size_t i = 1; i < direct.history.size(); ++i)
+    EXPECT_LE(direct.history[i].max_distortion, direct.history[i - 1].max_distortion + 1e-9);
+}
+
+TEST(Exact, RefusesLargeMeshes) {
+  Problem p = make_problem(make_grid(40, 40));
+  p.fix({{0, Eigen::Vector2d(0, 0)}});
+  ExactOptions o;
+  o.max_elements = 1000;
+  EXPECT_THROW(solve_exact(p, o), InputError);
+}
+
+}  // namespace
