@@ -1,6 +1,7 @@
 #include "strictmin/solvers/l2.h"
 
 #include <chrono>
+#include <cmath>
 #include <numeric>
 
 #include "strictmin/io/input_error.h"
@@ -109,11 +110,16 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
   // B_i = sum_T A_T R_T g_i (one row per free vertex, one column per image coordinate),
   // minus the couplings to the fixed vertices.
   Eigen::MatrixXd B = Eigen::MatrixXd::Zero(K_.rows(), n);
+  const int m = p.domain_dim;
   for (int e = 0; e < p.num_elements(); ++e) {
-    const auto R = p.targets.middleRows(e * n, n);
     for (int i = 0; i < c; ++i) {
       const int fi = free_index_[p.elements(e, i)];
-      if (fi >= 0) B.row(fi).noalias() += element_weights_(e) * (R * p.gradients.row(e * c + i).transpose()).transpose();
+      if (fi < 0) continue;
+      for (int r = 0; r < n; ++r) {
+        double sum = 0;  // (R_T g_i)_r
+        for (int k = 0; k < m; ++k) sum += p.targets(e * n + r, k) * p.gradients(e * c + i, k);
+        B(fi, r) += element_weights_(e) * sum;
+      }
     }
   }
   B.noalias() -= K_fixed_ * p.positions;
@@ -124,8 +130,18 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
 }
 
 Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
+  const int n = p.image_dim, m = p.domain_dim, c = p.corners();
   Eigen::VectorXd d(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) d(e) = (p.jacobian(e, X) - p.target(e)).norm();
+  for (int e = 0; e < p.num_elements(); ++e) {
+    double sum = 0;  // ||sum_j q_j g_j^T - R_T||_F^2, entry by entry
+    for (int r = 0; r < n; ++r)
+      for (int k = 0; k < m; ++k) {
+        double J = -p.targets(e * n + r, k);
+        for (int j = 0; j < c; ++j) J += X(p.elements(e, j), r) * p.gradients(e * c + j, k);
+        sum += J * J;
+      }
+    d(e) = std::sqrt(sum);
+  }
   return d;
 }
 
