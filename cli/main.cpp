@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   int exit_code = strictmin::cli::kExitSuccess;
   strictmin::cli::add_deform_command(app, exit_code);
   strictmin::cli::add_eval_command(app, exit_code);
+  strictmin::cli::add_report_command(app, exit_code);
+  strictmin::cli::add_demo_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,297 @@
+// strictmin report DIR [--scale S] --run SUMMARY.json ...: a side-by-side report of results
+// already computed. Each result is a summary JSON written by `deform --summary` (or `eval
+// --summary`): its `output` (or `map`) is the mapped mesh, its `distortion_file` the
+// per-element distortion (`--distortion`), its `input` the rest mesh ("example:NAME" or a
+// file). Results with the same input are compared in one section.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "report_output.h"
+#include "strictmin/io/atomic_file.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/measures/measures.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/report/html_report.h"
+#include "strictmin/tasks/examples.h"
+#include "strictmin/tasks/map_distortion.h"
+
+namespace strictmin::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReportCommandArgs {
+  std::string dir;
+  std::vector<std::string> runs, positional;
+  double scale = kDefaultColourScale;
+  std::string title = "strictmin report";
+  OutputOptions out;
+};
+
+// A path from a summary: as given when it exists, else relative to the summary's folder.
+std::string resolve(const std::string& path, const std::string& summary_file) {
+  if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
+  const fs::path beside = fs::path(summary_file).parent_path() / path;
+  return fs::exists(beside) ? beside.string() : path;
+}
+
+Eigen::VectorXd read_distortion_file(const std::string& path, int expected) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
+  std::vector<double> values;
+  std::string token;
+  while (in >> token) {
+    char* end = nullptr;
+    const double v = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || *end != '\0')
+      throw InputError(located(path, static_cast<long>(values.size()) + 1, "not a number: '" + token + "'"));
+    values.push_back(v);
+  }
+  if (static_cast<int>(values.size()) != expected)
+    throw InputError(path + ": " + std::to_string(values.size()) + " values for " + std::to_string(expected) +
+                     " elements of the mapped mesh");
+  return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+// Vertex positions of a result whose elements may be flipped (an L2 map can fold over, and
+// read_mesh rejects inconsistent orientation): OBJ `v` lines, MEDIT `Vertices`, OFF vertices.
+Eigen::MatrixXd read_positions(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::vector<Eigen::Vector3d> points;
+  std::string line;
+  if (ext == ".obj") {
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string key;
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      if (ls >> key && key == "v" && ls >> p.x() >> p.y()) {
+        ls >> p.z();
+        points.push_back(p);
+      }
+    }
+  } else {
+    std::vector<std::string> tokens;  // whitespace-separated, comments dropped
+    while (std::getline(in, line)) {
+      std::istringstream ls(line.substr(0, line.find('#')));
+      for (std::string t; ls >> t;) tokens.push_back(t);
+    }
+    std::size_t i = 0, n = 0, per = 3;
+    if (ext == ".mesh") {
+      while (i < tokens.size() && tokens[i] != "Vertices") ++i;
+      if (i + 1 < tokens.size()) n = std::stoul(tokens[i + 1]), i += 2;
+      per = 4;  // x y z ref
+    } else if (ext == ".off" && !tokens.empty()) {
+      i = 1;
+      if (i < tokens.size()) n = std::stoul(tokens[i]);
+      i += 3;
+    }
+    for (std::size_t k = 0; k < n && i + 3 <= tokens.size(); ++k, i += per)
+      points.emplace_back(std::stod(tokens[i]), std::stod(tokens[i + 1]), std::stod(tokens[i + 2]));
+  }
+  if (points.empty()) throw InputError(path + ": no vertices found");
+  Eigen::MatrixXd V(points.size(), 3);
+  for (std::size_t k = 0; k < points.size(); ++k) V.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
+  return V;
+}
+
+struct LoadedRun {
+  std::string input;    // the summary's input (groups runs into sections)
+  nlohmann::json summary;
+  MethodRun run;
+  std::shared_ptr<Mesh> rest;
+  std::vector<Handle> handles;
+};
+
+LoadedRun load_run(const std::string& file, const OutputOptions& out) {
+  std::ifstream in(file);
+  if (!in) throw InputError("cannot read " + file + ": " + std::strerror(errno));
+  LoadedRun r;
+  try {
+    r.summary = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file + ": not a JSON summary: " + e.what());
+  }
+  const auto& s = r.summary;
+  if (!s.is_object()) throw InputError(file + ": not a JSON summary (an object expected)");
+  auto text = [&](const char* key) {
+    return s.contains(key) && s[key].is_string() ? s[key].get<std::string>() : std::string();
+  };
+  auto number = [&](const char* key) {
+    return s.contains(key) && s[key].is_number() ? s[key].get<double>() : std::nan("");
+  };
+  r.input = text("input");
+  const std::string mapped_path = resolve(text("map").empty() ? text("output") : text("map"), file);
+  if (mapped_path.empty())
+    throw InputError(file + ": the summary names no output mesh (run the task with -o OUT.obj, or .mesh for tets)");
+  // The rest mesh: a built-in example, or the input file.
+  if (r.input.rfind("example:", 0) == 0) {
+    Example ex = make_example(r.input.substr(8));
+    r.rest = std::make_shared<Mesh>(std::move(ex.mesh));
+    r.handles = std::move(ex.handles);
+  } else if (!r.input.empty() && fs::exists(resolve(r.input, file))) {
+    r.rest = std::make_shared<Mesh>(read_mesh(resolve(r.input, file)));
+  }
+  std::vector<std::string> warnings;
+  try {
+    r.run.mapped = read_mesh(mapped_path, &warnings);
+  } catch (const InputError& e) {
+    // A map with flipped elements is a result too: take its positions over the rest mesh.
+    if (!r.rest) throw;
+    const Eigen::MatrixXd V = read_positions(mapped_path);
+    if (V.rows() != r.rest->num_vertices()) throw;
+    r.run.mapped = *r.rest;
+    r.run.mapped.V = V.leftCols(r.rest->dim());
+  }
+  for (const auto& w : warnings) progress(out, "warning: " + w);
+  const int elements = r.run.mapped.num_elements();
+  if (r.rest && r.rest->num_elements() != elements) {
+    progress(out, "warning: " + file + ": the input has " + std::to_string(r.rest->num_elements()) +
+                      " elements and the output " + std::to_string(elements) + "; the input is not shown");
+    r.rest.reset();
+  }
+
+  const std::string measure_text = text("measure").empty() ? "fd" : text("measure");
+  const std::string distortion_path = resolve(text("distortion_file"), file);
+  if (!distortion_path.empty()) {
+    r.run.distortion = read_distortion_file(distortion_path, elements);
+  } else if (r.rest) {
+    const auto measure = parse_measure(measure_text);
+    if (!measure) throw InputError(file + ": unknown measure '" + measure_text + "'");
+    Mesh mapped = r.run.mapped;
+    if (!mapped.has_uv()) mapped = to_planar(mapped);
+    r.run.distortion = map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion;
+    progress(out, "warning: " + file + ": no distortion_file (run with --distortion FILE); recomputed from " +
+                      mapped_path);
+  } else {
+    throw InputError(file + ": the summary names no distortion_file (run the task with --distortion FILE) and its "
+                            "input mesh '" + r.input + "' cannot be read to recompute it");
+  }
+  if (r.rest) {
+    r.run.weights = make_problem(*r.rest).weights;
+  } else {
+    r.run.weights = make_problem(r.run.mapped.has_uv() ? r.run.mapped : to_planar(r.run.mapped)).weights.cwiseAbs();
+    progress(out, "warning: " + file + ": input mesh not found; histogram areas are the output's");
+  }
+  r.run.method = text("method").empty() ? "result" : text("method");
+  r.run.flipped = s.contains("flipped") && s["flipped"].is_number_integer() ? s["flipped"].get<int>() : 0;
+  r.run.lower_bound = number("lower_bound");
+  r.run.time_s = std::isfinite(number("solver_time_s")) ? number("solver_time_s") : number("time_s");
+  r.run.status = text("status").empty() ? "solved" : text("status");
+  r.run.message = text("message");
+  return r;
+}
+
+std::string section_id(const std::string& input, std::set<std::string>& used) {
+  std::string id;
+  for (char c : input_title(input)) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  if (id.empty()) id = "results";
+  std::string unique = id;
+  for (int k = 2; used.count(unique); ++k) unique = id + "-" + std::to_string(k);
+  used.insert(unique);
+  return unique;
+}
+
+int run_report(ReportCommandArgs a) {
+  a.runs.insert(a.runs.end(), a.positional.begin(), a.positional.end());
+  if (a.runs.empty()) throw InputError("report needs at least one result: --run SUMMARY.json (written by --summary)");
+  std::vector<LoadedRun> loaded;
+  for (const auto& f : a.runs) loaded.push_back(load_run(f, a.out));
+
+  // Sections in order of first appearance of each input.
+  std::vector<std::string> inputs;
+  for (const auto& r : loaded)
+    if (std::find(inputs.begin(), inputs.end(), r.input) == inputs.end()) inputs.push_back(r.input);
+  std::error_code ec;
+  fs::create_directories(a.dir, ec);
+  if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
+
+  HtmlReport report;
+  report.title = a.title;
+  report.scale = a.scale;
+  report.intro.push_back(
+      "Results compared side by side: each picture is one method's map with every element coloured by its "
+      "distortion, each histogram shows how the distortion is spread over the mesh, and the strict-order verdict says "
+      "which of two maps is less distorting in the sense of the paper (lower maximum first, then less area at each "
+      "level going down).");
+  ComparisonOptions options;
+  options.scale = a.scale;
+  std::set<std::string> used_ids;
+  bool all_solved = true;
+  for (const auto& input : inputs) {
+    SectionInput in;
+    in.id = section_id(input, used_ids);
+    in.title = input_title(input);
+    std::set<std::string> stems;
+    std::string measure;
+    for (std::size_t i = 0; i < loaded.size(); ++i) {
+      LoadedRun& r = loaded[i];
+      if (r.input != input) continue;
+      if (!in.rest && r.rest) {
+        in.rest = r.rest.get();
+        in.handles = r.handles;
+      }
+      if (measure.empty()) measure = r.summary.value("measure", std::string("fd"));
+      std::string stem = r.run.method;
+      for (int k = 2; stems.count(stem) || stem == "input" || stem == "histogram"; ++k)
+        stem = r.run.method + "-" + std::to_string(k);
+      stems.insert(stem);
+      r.run.view_name = stem;
+      fs::create_directories(fs::path(a.dir) / in.id, ec);
+      write_file_atomically((fs::path(a.dir) / in.id / (stem + ".json")).string(),
+                            [&](std::ostream& os) { os << r.summary.dump(2) << '\n'; });
+      r.run.links.emplace_back("summary", in.id + "/" + stem + ".json");
+      all_solved = all_solved && r.run.status == "solved";
+      in.runs.push_back(r.run);
+    }
+    in.measure = measure_description(measure);
+    in.description = std::to_string(in.runs.size()) + " result" + (in.runs.size() == 1 ? "" : "s") + " for input " +
+                     (input.empty() ? std::string("(unknown)") : input) + ".";
+    report.sections.push_back(write_section(a.dir, in, options));
+  }
+  report.footer = "Made by strictmin report from " + std::to_string(a.runs.size()) + " result summaries.";
+  const std::string index = (fs::path(a.dir) / "index.html").string();
+  write_index_html(index, report);
+  std::cout << "report: open " << file_url(index) << " in a browser" << std::endl;
+  return all_solved ? kExitSuccess : kExitNotConverged;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ReportCommandArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "report",
+      "Compare results already computed, side by side, in a folder of static files (open DIR/index.html): "
+      "colour-coded pictures, an overlaid log-scale histogram and the strict-order verdicts.\n"
+      "Each result is a summary JSON written with --summary, by a run that also wrote its mesh (-o) and its "
+      "distortion (--distortion), e.g.\n"
+      "  strictmin deform --example square --method l2 -o l2.obj --distortion l2.txt --summary l2.json\n"
+      "  strictmin deform --example square --method linf -o linf.obj --distortion linf.txt --summary linf.json\n"
+      "  strictmin report out --run l2.json --run linf.json");
+  cmd->add_option("dir", args->dir, "Folder to write the report into (created when missing)")->required();
+  cmd->add_option("results", args->positional, "Result summaries (JSON), the same as --run");
+  cmd->add_option("--run", args->runs, "A result's summary JSON (repeat for each method)")->type_name("SUMMARY");
+  cmd->add_option("--scale", args->scale, "The distortion shown red (dark blue is 0)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--title", args->title, "Title of the page")->capture_default_str();
+  cmd->add_flag("--quiet,-q", args->out.quiet, "No warnings on stderr");
+  cmd->callback([args, &exit_code] { exit_code = run_report(*args); });
+}
+
+}  // namespace strictmin::cli

@@ -1,0 +1,41 @@
+#pragma once
+// What the report-writing subcommands share: the --report option of tasks, a report
+// section from a task's outcome, and the "open this" line.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "strictmin/report/colour_map.h"
+#include "strictmin/report/comparison.h"
+#include "strictmin/tasks/deform.h"
+
+namespace strictmin::cli {
+
+struct ReportArgs {
+  std::string dir;                     // --report DIR
+  double scale = kDefaultColourScale;  // --report-scale S
+};
+
+// Adds --report DIR and --report-scale S to a task's command.
+void add_report_options(CLI::App& cmd, ReportArgs& args);
+
+// One method's run for a report section, from a deformation's outcome.
+MethodRun method_run(const std::string& method, const DeformOutcome& d);
+
+// deform --report DIR: DIR/summary.json (the summary), DIR/view.svg (planar) or
+// DIR/view.png (tets), DIR/input.svg|png, DIR/histogram.svg and DIR/index.html.
+// Returns the path of index.html.
+std::string write_task_report(const ReportArgs& args, const nlohmann::json& summary, const std::string& input_name,
+                              const Mesh& rest, const std::vector<Handle>& handles, const DeformOutcome& d);
+
+// "file:///absolute/path" of a local file, for the line telling where to open a report.
+std::string file_url(const std::string& path);
+
+// "field deviation ||J - I||" etc. for a measure's short name (the name itself when unknown).
+std::string measure_description(const std::string& measure);
+
+// A plain title for an input: "example:square" -> "square", "dir/gecko.obj" -> "gecko.obj".
+std::string input_title(const std::string& input);
+
+}  // namespace strictmin::cli

@@ -1,0 +1,89 @@
+"""End-to-end tests of the report commands: `deform --report DIR` and `strictmin report DIR
+--run SUMMARY ...` on results written by deform. Run by ctest with STRICTMIN_CLI pointing
+at the built tool."""
+import json
+import os
+import re
+import subprocess
+import tempfile
+import unittest
+
+CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
+
+
+def run(*args, cwd=None, check_code=0):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300, cwd=cwd)
+    if check_code is not None and p.returncode != check_code:
+        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr[-3000:]}")
+    return p
+
+
+def read(path, mode="r"):
+    with open(path, mode, **({} if "b" in mode else {"encoding": "utf-8"})) as f:
+        return f.read()
+
+
+def references(html):
+    return [r for r in re.findall(r'(?:src|href)="([^"]*)"', html) if not r.startswith("#")]
+
+
+class Report(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def check_folder(self, folder):
+        html = read(os.path.join(folder, "index.html"))
+        for ref in references(html):
+            self.assertNotIn(":", ref, "relative links only")
+            self.assertTrue(os.path.exists(os.path.join(folder, ref)), ref)
+        self.assertNotIn("<script", html)
+        return html
+
+    def test_deform_report(self):
+        out = os.path.join(self.dir, "r")
+        run("deform", "--example", "square", "--method", "l2", "--report", out, "--quiet")
+        for name in ("summary.json", "histogram.svg", "view.svg", "index.html"):
+            self.assertTrue(os.path.exists(os.path.join(out, name)), name)
+        s = json.loads(read(os.path.join(out, "summary.json")))
+        self.assertEqual(s["method"], "l2")
+        self.assertIn("distortion_file", s)
+        html = self.check_folder(out)
+        self.assertIn("L2 (least squares)", html)
+        self.assertEqual(read(os.path.join(out, "view.svg")).count("<polygon"), 800)
+
+    def test_deform_report_of_tets_is_a_png(self):
+        out = os.path.join(self.dir, "t")
+        run("deform", "--example", "tetbar", "--method", "l2", "--report", out, "--report-scale", "2", "--quiet")
+        self.assertEqual(read(os.path.join(out, "view.png"), "rb")[:8], b"\x89PNG\r\n\x1a\n")
+        self.assertIn("red = 2 and above", self.check_folder(out))
+
+    def test_report_compares_results_already_computed(self):
+        for method in ("l2", "linf"):
+            run("deform", "--example", "square", "--method", method, "-o", f"{method}.obj", "--distortion",
+                f"{method}.txt", "--summary", f"{method}.json", "--quiet", cwd=self.dir)
+            s = json.loads(read(os.path.join(self.dir, f"{method}.json")))
+            self.assertEqual(s["distortion_file"], f"{method}.txt")
+        p = run("report", "out", "--run", "l2.json", "--run", "linf.json", "--scale", "0.5", cwd=self.dir)
+        self.assertIn("index.html", p.stdout)
+        out = os.path.join(self.dir, "out")
+        html = self.check_folder(out)
+        self.assertIn("L\u221e (least maximum) is less distorting than L2 (least squares)", html)
+        self.assertIn("red = 0.5 and above", html)
+        for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
+            self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
+
+    def test_report_needs_results_it_can_read(self):
+        p = run("report", os.path.join(self.dir, "out"), check_code=1)
+        self.assertIn("--run", p.stderr)
+        with open(os.path.join(self.dir, "x.json"), "w") as f:
+            json.dump({"task": "deform", "input": "example:square", "method": "l2"}, f)
+        p = run("report", os.path.join(self.dir, "out"), os.path.join(self.dir, "x.json"), check_code=1)
+        self.assertIn("no output mesh", p.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
