@@ -1,0 +1,124 @@
+// One L-infinity solve (solve_linf: interior-point method on CHOLMOD) at several sizes.
+//   square/N: the paper's Figure 2 on an N x N grid (2 N^2 triangles): boundary fixed,
+//             centre moved sideways by 0.2;
+//   bar/N:    a 4N x N bar (8 N^2 triangles), random rotation targets (+-0.5 rad), left end
+//             fixed, right end moved and rotated;
+//   bimba_89k: ../shared/data/disk/bimba_89k.obj as a surface (per-triangle frames, identity
+//             targets), three boundary vertices fixed where an L2 map puts them.
+// Counters: triangles, interior-point iterations, k, certified relative gap.
+// Measure on an idle machine: CHOLMOD, OpenBLAS and TBB all use both cores.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf.h"
+
+using namespace strictmin;
+
+namespace {
+
+Problem square_problem(int cells) {
+  const Mesh mesh = make_grid(cells, cells);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> handles;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int i = v % (cells + 1), j = v / (cells + 1);
+    if (i == 0 || j == 0 || i == cells || j == cells) handles.push_back({v, mesh.V.row(v).transpose()});
+  }
+  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  handles.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + 0.2, mesh.V(centre, 1))});
+  p.fix(handles);
+  return p;
+}
+
+Problem bar_problem(int n) {
+  const int nx = 4 * n, ny = n;
+  const Mesh mesh = make_grid(nx, ny, 4.0, 1.0);
+  Problem p = make_problem(mesh);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-0.5, 0.5);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const double a = angle(rng);
+    Eigen::Matrix2d R;
+    R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+    p.set_target(e, R);
+  }
+  Eigen::Matrix2d R;
+  R << std::cos(0.6), -std::sin(0.6), std::sin(0.6), std::cos(0.6);
+  std::vector<Handle> handles;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int i = v % (nx + 1);
+    const Eigen::Vector2d q = mesh.V.row(v).transpose();
+    if (i == 0) handles.push_back({v, q});
+    if (i == nx) handles.push_back({v, Eigen::Vector2d(3.5, 1.0) + R * (q - Eigen::Vector2d(4.0, 0.5))});
+  }
+  p.fix(handles);
+  return p;
+}
+
+void run(benchmark::State& state, const Problem& p) {
+  Result r;
+  for (auto _ : state) {
+    r = solve_linf(p);
+    benchmark::DoNotOptimize(r.positions.data());
+  }
+  const double k = r.distortion.maxCoeff();
+  state.counters["triangles"] = p.num_elements();
+  state.counters["iterations"] = r.iterations;
+  state.counters["k"] = k;
+  state.counters["gap"] = (k - r.lower_bound) / std::max(1.0, std::abs(k));
+  if (!r.ok()) state.SkipWithError(("not solved: " + r.message).c_str());
+}
+
+void BM_LinfSquare(benchmark::State& state) { run(state, square_problem(static_cast<int>(state.range(0)))); }
+void BM_LinfBar(benchmark::State& state) { run(state, bar_problem(static_cast<int>(state.range(0)))); }
+
+void BM_LinfBimba(benchmark::State& state) {
+  const std::string path = std::string(STRICTMIN_SHARED_DATA) + "/disk/bimba_89k.obj";
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError((path + " is absent").c_str());
+    for (auto _ : state) {
+    }
+    return;
+  }
+  const Mesh mesh = read_mesh(path);
+  Problem p = make_problem(mesh);
+  std::map<std::pair<int, int>, int> edges;
+  for (int f = 0; f < mesh.num_elements(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const int a = mesh.F(f, j), b = mesh.F(f, (j + 1) % 3);
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<int> boundary;
+  for (const auto& [e, count] : edges)
+    if (count == 1) boundary.push_back(e.first);
+  std::sort(boundary.begin(), boundary.end());
+  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+  Problem pinned = p;
+  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
+  const Result l2 = solve_l2(pinned);
+  std::vector<Handle> handles;
+  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
+    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
+  p.fix(handles);
+  run(state, p);
+}
+
+}  // namespace
+
+// ~10k, ~50k, ~100k triangles.
+BENCHMARK(BM_LinfSquare)->Arg(71)->Arg(158)->Arg(224)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LinfBar)->Arg(35)->Arg(79)->Arg(112)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LinfBimba)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,42 @@
+#pragma once
+// The certified lower bound (dual objective of a dual-feasible point) and the weighted
+// least-squares solves it needs.
+//
+// Any z in the cones and y give a lower bound once the dual equations hold exactly:
+// r = G^T z_tails + A^T y is corrected by delta = -W G (G^T W G)^{-1} r on the tails
+// (W = element weights), which makes G^T (z_tails + delta) + A^T y = 0; raising each head by
+// ||delta_i|| keeps z_i in its cone, and dividing by sum_i a_i z_i,0 restores the k
+// equation. The dual objective of the corrected point is then a valid bound by weak duality
+// (for a program with c_k = 1 and no quadratic term): no x, k does better.
+//
+// G^T W G = K (x) I_n with K = sum_i w_i L_i (L_i the corners' gradient Gram matrix), the
+// area-weighted L2 matrix of the free vertices (the cotangent Laplacian for triangles):
+// factorised once, solved per image coordinate.
+#include <Eigen/Core>
+
+#include "strictmin/solvers/socp/cone_program.h"
+#include "strictmin/solvers/sparse_cholesky.h"
+
+namespace strictmin::socp {
+
+class WeightedLeastSquares {
+ public:
+  explicit WeightedLeastSquares(const ConeProgram& p);
+  bool ok() const { return ok_; }
+  // (G^T W G)^{-1} r.
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
+  // argmin_x sum_i w_i ||G_i x - h_i||^2 (the L2 map, without the equalities).
+  Eigen::VectorXd minimizer() const;
+
+ private:
+  const ConeProgram& p_;
+  SparseCholesky cholesky_;
+  bool ok_ = true;
+};
+
+// Certified lower bound on the optimal k of `p` (c_k = 1, no quadratic objective) from any
+// z strictly inside the cones and any y. -inf when it cannot be formed.
+double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& ls, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& y);
+
+}  // namespace strictmin::socp

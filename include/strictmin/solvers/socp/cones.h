@@ -1,0 +1,37 @@
+#pragma once
+// Operations on vectors that hold one entry block per cone of a ConeProgram (s, z, the
+// scaled point lambda, directions), each cone by the closed forms of soc.h, in parallel.
+#include <Eigen/Core>
+
+#include "strictmin/solvers/socp/cone_program.h"
+
+namespace strictmin::socp {
+
+// Nesterov-Todd scaling of every cone: W_i = beta_i (2 w_i w_i^T - J), and lambda = W z.
+struct Scaling {
+  Eigen::VectorXd beta;    // #cones
+  Eigen::VectorXd w;       // cone layout
+  Eigen::VectorXd lambda;  // cone layout
+};
+
+// False when some s_i or z_i is not strictly inside its cone.
+bool compute_scaling(const ConeProgram& p, const Eigen::VectorXd& s, const Eigen::VectorXd& z, Scaling& out);
+
+enum class ScalingOp { W, WInv, WInv2 };
+// out = op(W) u, cone by cone (out must not alias u).
+void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const Eigen::VectorXd& u, Eigen::VectorXd& out);
+
+// Jordan product a o b and the solution of l o out = r, cone by cone.
+void cone_product(const ConeProgram& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out);
+void cone_arrow_solve(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& r, Eigen::VectorXd& out);
+
+// The identity e (1 in every head, 0 in the tails), scaled by `value`.
+Eigen::VectorXd cone_identity(const ConeProgram& p, double value);
+
+// Largest alpha with l + alpha u in every cone (l strictly inside); +inf if none limits it.
+double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u);
+
+// Smallest u0 - ||u1|| over the cones (negative when u is outside some cone).
+double cone_min_margin(const ConeProgram& p, const Eigen::VectorXd& u);
+
+}  // namespace strictmin::socp

@@ -1,0 +1,40 @@
+#pragma once
+// Primal-dual path-following interior-point method for a ConeProgram (cone_program.h),
+// infeasible start, Nesterov-Todd scaling, Mehrotra predictor-corrector (the structure of
+// CVXOPT's coneqp and of ECOS without the homogeneous embedding):
+//
+//   1. residuals, NT scaling W and lambda = W z = W^{-1} s, mu = lambda^T lambda / #cones;
+//   2. factorise the normal equations (kkt.h);
+//   3. affine direction: linearised complementarity lambda o (W^{-1} ds + W dz) = -lambda o lambda;
+//   4. sigma = (1 - a + a^2 ds~^T dz~ / lambda^T lambda)^3 from its step a;
+//   5. combined direction with the second-order term and centring:
+//      lambda o (W^{-1} ds + W dz) = -lambda o lambda - ds~_a o dz~_a + sigma mu e;
+//   6. step: step_fraction times the longest step keeping s and z inside the cones,
+//      computed on the scaled point (well centred, so accurate to the end).
+//
+// The caller gives the starting x, k (initialize builds interior s and z from them) and a
+// monitor that sees every iterate and decides when to stop (e.g. on a certified gap).
+#include <functional>
+
+#include "strictmin/solvers/socp/cone_program.h"
+#include "strictmin/solvers/socp/residuals.h"
+#include "strictmin/solvers/socp/settings.h"
+
+namespace strictmin::socp {
+
+// s = M v + o moved inside the cones where it is not (heads raised to ||tail|| + margin),
+// z = mu0 s^{-1} (so that s o z = mu0 e: a perfectly centred start) with mu0 chosen so that
+// the k part of the dual residual vanishes (or from dual_scale without k), y = 0.
+void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, double margin, double dual_scale,
+                IpmState& st);
+
+// Returns true to stop (the iterate satisfies the caller).
+using IpmMonitor = std::function<bool(const IpmState&, const Residuals&, const IpmIteration&)>;
+
+// The standard test: relative residuals below feasibility_tolerance and
+// gap <= gap_tolerance * max(1, min(|pobj|, |dobj|)).
+bool default_converged(const Residuals& r, const IpmSettings& settings);
+
+IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor);
+
+}  // namespace strictmin::socp

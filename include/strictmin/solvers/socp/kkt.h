@@ -1,0 +1,100 @@
+#pragma once
+// The Newton systems of the interior-point method, reduced to the normal equations
+//
+//   [ H + P   A~^T ] [dv]   [r1]      H = M^T W^{-2} M  over v = (x, k),
+//   [ A~      0    ] [w ] = [r2],     A~ = [A 0],
+//
+// and solved with one sparse Cholesky factorisation per iteration (CHOLMOD's supernodal LLT,
+// as in sparse_cholesky.h, held here so that it factors in our ordering, ordering.h):
+// - H_xx (free dofs) has the sparsity of the vertex adjacency, n by n blocks per vertex pair:
+//   element i adds (1/beta_i^2)(I_n (x) L_i + 2 p_i p_i^T), L_i its corners' gradient Gram
+//   matrix and p_i = G_i^T v_i,1 (soc.h: W^{-2} = (1/beta^2)(2 v v^T - J)). The pattern is
+//   built (in the fill-reducing order of the vertex graph) and analysed (supernodes) once;
+//   every iteration only refills values.
+// - k couples to every dof (a dense row and column). It is eliminated by bordering: one extra
+//   solve per factorisation gives u = H_xx^{-1} h_xk and the Schur complement
+//   S = h_kk - h_xk^T u, then every right-hand side costs one sparse solve.
+// - Equalities are eliminated by a penalty (H_xx + A^T A / rho, pattern fixed).
+// - A small static diagonal regularises H_xx. Each solve is refined by preconditioned
+//   conjugate gradients on the normal equations (applied matrix-free through the cones, the
+//   factor as preconditioner): near the optimum the matrix is so ill-conditioned that the
+//   factor is accurate only up to a few directions, which CG removes in a few steps. With
+//   equalities, an outer refinement on the unreduced system removes the penalty's effect.
+#include <Eigen/CholmodSupport>
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "strictmin/solvers/socp/cone_program.h"
+#include "strictmin/solvers/socp/cones.h"
+#include "strictmin/solvers/socp/settings.h"
+
+namespace strictmin::socp {
+
+// A Newton direction: dv = (dx, dk), dy, and the cone parts ds, dz with their scaled forms
+// dst = W^{-1} ds, dzt = W dz.
+struct Direction {
+  Eigen::VectorXd dx, dy, ds, dz, dst, dzt;
+  double dk = 0;
+  double residual = 0;  // relative residual of the Newton system reached
+  int refinement = 0;   // refinement steps used
+};
+
+class NormalEquations {
+ public:
+  NormalEquations(const ConeProgram& program, const IpmSettings& settings);
+
+  // Fills and factorises the matrix for the scaling (kept by reference until the next call).
+  // False when the factorisation fails even after raising the regularisation.
+  bool factor(const Scaling& scaling);
+
+  // The Newton direction for the residuals of the current iterate (residuals.h) and the
+  // linearised complementarity W^{-1} ds + W dz = q:
+  //   -P dv + M^T dz + A~^T dy = r_d,   W^{-1} M dv + W dz = q + W^{-1} r_s,   A dx = -r_eq,
+  //   ds = M dv - r_s.
+  // Solved by the normal equations, then refined against this (unreduced) system, so that the
+  // dual equations hold to round-off in G and dz (not in the far larger W^{-2}).
+  void solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx, double rdk,
+                    const Eigen::VectorXd& req, Direction& d);
+
+  double regularization() const { return delta_; }
+  Eigen::Index matrix_nonzeros() const { return matrix_.nonZeros(); }
+  double analyze_flops() const;  // CHOLMOD's flop count of one factorisation
+
+ private:
+  void build_pattern();
+  // The normal equations (H + P) dv + A~^T w = (r1x, r1k), A~ dv = r2 with the factor
+  // (regularised, penalised equalities; w = -dy).
+  void solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2, Eigen::VectorXd& dx,
+                    double& dk, Eigen::VectorXd& w) const;
+  // (ox, ok) = (H + P + A^T A / rho) (dx, dk), matrix-free through the cones.
+  void apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const;
+  // Preconditioned CG on that system until the residual (max norm) is below threshold;
+  // returns the number of CG steps.
+  int pcg(const Eigen::VectorXd& bx, double bk, double threshold, Eigen::VectorXd& x, double& k) const;
+  // dv, w and dz for the residuals (rd, rc, re) of the unreduced system (rc scaled: W^{-1} row).
+  void solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc, const Eigen::VectorXd& re,
+                       Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w, Eigen::VectorXd& dz, double threshold,
+                       int& steps) const;
+
+  const ConeProgram& p_;
+  const IpmSettings& settings_;
+  const Scaling* scaling_ = nullptr;
+  int npairs_ = 0;                         // local lower-triangle pairs per element
+  Eigen::SparseMatrix<double> matrix_;     // H_xx (+ P + penalty + delta), lower triangle
+  std::vector<int> slot_target_;           // #cones * npairs: nonzero index or -1
+  std::vector<int> gather_offset_, gather_;  // nonzero -> slots
+  std::vector<int> diagonal_;              // dof -> nonzero index of its diagonal
+  Eigen::VectorXd p_values_, ata_values_;  // constant parts, by nonzero
+  Eigen::VectorXd slot_values_, cone_k_;   // per-iteration element contributions
+  Eigen::SparseMatrix<double, Eigen::RowMajor> at_;  // A^T (dofs by equalities)
+  std::vector<int> perm_;                  // dof -> row of matrix_ (fill-reducing order)
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
+  Eigen::VectorXd llt_solve(const Eigen::VectorXd& b) const;  // in dof numbering
+  double delta_ = 0, inv_rho_ = 0;
+  Eigen::VectorXd diag_saved_;
+  Eigen::VectorXd hxk_, u_;                // k column and H_xx^{-1} h_xk
+  double hkk_ = 0, schur_ = 1;
+};
+
+}  // namespace strictmin::socp

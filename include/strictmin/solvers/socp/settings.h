@@ -1,0 +1,64 @@
+#pragma once
+// Settings and per-iteration information of the interior-point method (socp/ipm.h).
+#include <limits>
+#include <string>
+
+namespace strictmin::socp {
+
+struct IpmSettings {
+  int max_iterations = 100;
+  double gap_tolerance = 1e-8;          // default stopping test (ipm.h: default_converged)
+  double feasibility_tolerance = 1e-8;
+  double step_fraction = 0.95;          // fraction of the step to the cone boundary
+  // Static regularisation of the normal matrix: each diagonal entry is multiplied by
+  // 1 + regularization (plus 1e-3 * regularization * the largest one); regularization is
+  // multiplied by 100 on every failed factorisation (at most factorization_retries times).
+  double regularization = 1e-15;
+  int factorization_retries = 4;
+  // Refinement of each Newton direction: at most refinement_steps preconditioned CG steps
+  // on the normal equations, stopping at a relative residual of refinement_tolerance.
+  int refinement_steps = 10;
+  double refinement_tolerance = 1e-10;
+  // Newton directions whose relative residual stays above max_newton_residual for
+  // max_bad_directions iterations in a row are unreliable: the normal equations have become
+  // too ill-conditioned for double precision; the method stops with NumericalError (the
+  // caller may accept the iterate).
+  double max_newton_residual = 1e-1;
+  int max_bad_directions = 5;
+  // Equality constraints are eliminated by a penalty A^T A / rho with rho =
+  // equality_penalty / max diagonal, then refined against the exact saddle-point system.
+  double equality_penalty = 1e-8;
+  // Consecutive iterations with a step below min_step before giving up.
+  double min_step = 1e-10;
+  int max_small_steps = 3;
+  // 1: one line per iteration on stderr (objectives, residuals, mu, step, sigma, CG steps,
+  // Newton residual) and the factorisation size; 2: also every Newton solve's residuals.
+  int verbose = 0;
+};
+
+enum class IpmStatus { Running, Converged, MaxIterations, NumericalError };
+
+// What the method knows after an iteration (iteration 0 is the starting point).
+struct IpmIteration {
+  int iteration = 0;
+  double pobj = 0, dobj = 0;  // primal and dual objectives of the cone program
+  double gap = 0;             // s^T z
+  double mu = 0;              // s^T z / (number of cones)
+  double pres = 0;            // relative primal residual (cones and equalities), max norm
+  double dres = 0;            // relative dual residual, max norm
+  double step = 0, sigma = 0; // step length and centring parameter of the iteration
+  int refinement = 0;         // refinement steps used by the last Newton solve
+  double kkt_residual = 0;    // relative residual of the last Newton solve
+  double time_s = 0;          // since the method started
+};
+
+struct IpmOutcome {
+  IpmStatus status = IpmStatus::Running;
+  int iterations = 0;
+  std::string message;
+  // Where the time went (seconds): symbolic analysis, numeric factorisations (with the
+  // bordering solve), Newton solves (with refinement), the caller's monitor, everything.
+  double analyze_s = 0, factor_s = 0, solve_s = 0, monitor_s = 0, total_s = 0;
+};
+
+}  // namespace strictmin::socp

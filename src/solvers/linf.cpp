@@ -1,0 +1,412 @@
+// L-infinity field deviation by our interior-point method (solvers/socp/): the phases.
+//   1. classify elements (free / bounded / constant), check the constants;
+//   2. start from the L2 map (or the given positions, whichever is better);
+//   3. phase 1 when the start misses some fixed bound: min t s.t. D_T <= k_T + t;
+//   4. min k s.t. D_T <= k (free), D_T <= k_T (bounded), k >= constant elements' D_T;
+//   5. optionally (Section 5.1 (a)) min sum A_T D_T^2 s.t. D_T <= k* (+ slack).
+#include "strictmin/solvers/linf.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/socp/certificate.h"
+#include "strictmin/solvers/socp/fd_program.h"
+#include "strictmin/solvers/socp/ipm.h"
+
+namespace strictmin {
+namespace {
+
+using socp::ConeProgram;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string format(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+socp::IpmSettings ipm_settings(const LinfOptions& o) {
+  socp::IpmSettings s;
+  s.max_iterations = o.max_iterations;
+  s.gap_tolerance = o.gap_tolerance;
+  s.feasibility_tolerance = o.feasibility_tolerance;
+  s.step_fraction = o.step_fraction;
+  s.regularization = o.regularization;
+  s.refinement_steps = o.refinement_steps;
+  s.verbose = o.verbose;
+  return s;
+}
+
+// A starting k above every value: max + 10% + 1% of the scale.
+double start_above(double max_value) { return max_value + 0.1 * std::abs(max_value) + 1e-2 * (1.0 + std::abs(max_value)); }
+
+int find_root(std::vector<int>& parent, int v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+struct Phase1 {
+  bool feasible = true;
+  double t = -kInf;          // max_T (D_T - k_T) at the returned x
+  double lower_bound = -kInf; // certified: no map does better than this t
+  Eigen::MatrixXd X;          // the map (vertices outside the bounded elements unchanged)
+  int iterations = 0;
+  std::string message;
+};
+
+// min t s.t. ||G_T x - h_T|| <= k_T + t over the bounded elements only (always feasible).
+// Vertices of no bounded element stay where X0 has them; a part of the bounded elements
+// without any fixed vertex is anchored at one vertex (D_T is translation invariant).
+Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen::VectorXd& bounds,
+                  const Eigen::MatrixXd& X0, const LinfOptions& options) {
+  const int n = p.image_dim, c = p.corners();
+  const std::vector<int>& elems = cls.bounded_elements;
+  std::vector<char> in_sub(p.num_vertices, 0), held(p.fixed.begin(), p.fixed.end());
+  std::vector<int> parent(p.num_vertices);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int e : elems)
+    for (int j = 0; j < c; ++j) {
+      in_sub[p.elements(e, j)] = 1;
+      parent[find_root(parent, p.elements(e, j))] = find_root(parent, p.elements(e, 0));
+    }
+  if (!p.has_equalities()) {
+    std::vector<char> anchored(p.num_vertices, 0);
+    for (int v = 0; v < p.num_vertices; ++v)
+      if (in_sub[v] && p.fixed[v]) anchored[find_root(parent, v)] = 1;
+    for (int v = 0; v < p.num_vertices; ++v) {
+      const int r = find_root(parent, v);
+      if (in_sub[v] && !anchored[r]) {
+        anchored[r] = 1;
+        held[v] = 1;
+      }
+    }
+  }
+  std::vector<int> vertex_dof(p.num_vertices, -1);
+  int num_x = 0;
+  for (int v = 0; v < p.num_vertices; ++v) {
+    if (!in_sub[v]) held[v] = 1;  // outside: constant here
+    if (!held[v]) {
+      vertex_dof[v] = num_x;
+      num_x += n;
+    }
+  }
+  ConeProgram prog = socp::element_program(p, elems, vertex_dof, num_x, X0);
+  for (size_t i = 0; i < elems.size(); ++i) prog.head_b[static_cast<Eigen::Index>(i)] = bounds[elems[i]];
+  socp::restrict_equalities(p, vertex_dof, num_x, X0, held, prog);
+
+  Eigen::VectorXd x0(num_x);
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (vertex_dof[v] >= 0) x0.segment(vertex_dof[v], n) = X0.row(v).transpose();
+
+  Phase1 out;
+  auto excess_at = [&](const Eigen::VectorXd& x) {
+    const Eigen::VectorXd d = socp::cone_distortions(prog, x);
+    double t = -kInf;
+    for (int i = 0; i < prog.num_element_cones(); ++i) t = std::max(t, d[i] - prog.head_b[i]);
+    return t;
+  };
+  const double scale = std::max(1.0, prog.head_b.maxCoeff());
+  const double tol = options.infeasibility_tolerance * scale;
+  double best_t = excess_at(x0), best_lb = -kInf;
+  Eigen::VectorXd best_x = x0;
+  socp::WeightedLeastSquares ls(prog);
+  socp::IpmState st;
+  socp::initialize(prog, x0, start_above(best_t), 1e-2 * scale, 1.0, st);
+  const socp::IpmSettings settings = ipm_settings(options);
+  const auto outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals&,
+                                                             const socp::IpmIteration&) {
+    const double t = excess_at(s.x);
+    if (t < best_t) {
+      best_t = t;
+      best_x = s.x;
+    }
+    best_lb = std::max(best_lb, socp::certified_lower_bound(prog, ls, s.z, s.y));
+    // Done when strictly feasible, certainly infeasible, or converged.
+    return best_t < 0 || best_lb > tol || best_t - best_lb <= options.gap_tolerance * scale;
+  });
+  out.iterations = outcome.iterations;
+  out.t = best_t;
+  out.lower_bound = best_lb;
+  out.X = X0;
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (vertex_dof[v] >= 0) out.X.row(v) = best_x.segment(vertex_dof[v], n).transpose();
+  if (best_lb > tol || (outcome.status == socp::IpmStatus::Converged && best_t > tol)) {
+    out.feasible = false;
+    out.message = "the fixed bounds cannot all be met: some bounded element exceeds its bound k_T by at least " +
+                  format(std::max(best_lb, 0.0)) + " (best map found: " + format(best_t) + ")";
+  } else if (best_t > tol) {
+    out.feasible = false;
+    out.message = "could not decide whether the fixed bounds can be met (phase 1: " + outcome.message +
+                  "; excess " + format(best_t) + ", bound " + format(best_lb) + ")";
+  }
+  return out;
+}
+
+struct MainSolve {
+  Eigen::VectorXd x;
+  double k = kInf, lower_bound = -kInf;
+  socp::IpmOutcome outcome;
+  double last_progress_gap = kInf;
+  int last_progress_iteration = 0;
+  bool stalled = false;
+};
+
+}  // namespace
+
+Result solve_linf(const Problem& p, const LinfOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int E = p.num_elements(), n = p.image_dim;
+  if (options.element_bounds.size() != 0 && options.element_bounds.size() != E)
+    throw InputError("element_bounds has " + std::to_string(options.element_bounds.size()) + " entries, the problem has " +
+                     std::to_string(E) + " elements");
+  Result result;
+  auto finish = [&](const Eigen::MatrixXd& X) {
+    result.positions = X;
+    result.distortion = field_deviation(p, X);
+    result.time_s = seconds_since(t0);
+    return result;
+  };
+  const Eigen::VectorXd& bounds = options.element_bounds;
+  const socp::ElementClasses cls = socp::classify_elements(p, bounds);
+
+  // Constant elements: their bounds must hold as they are.
+  if (cls.constant_excess_element >= 0 &&
+      cls.constant_excess > options.infeasibility_tolerance * std::max(1.0, bounds[cls.constant_excess_element])) {
+    result.status = SolveStatus::Infeasible;
+    result.message = "element " + std::to_string(cls.constant_excess_element) +
+                     " has every vertex fixed and exceeds its bound k_T by " + format(cls.constant_excess);
+    return finish(p.positions);
+  }
+  const std::vector<int> loose = unanchored_components(p);
+  if (!loose.empty()) {
+    result.status = SolveStatus::NumericalError;
+    result.message = "the map is not determined: the part of the mesh containing vertex " + std::to_string(loose.front()) +
+                     " has no fixed vertex";
+    return finish(p.positions);
+  }
+  if (p.num_free() == 0 || (cls.free_elements.empty() && cls.bounded_elements.empty())) {
+    // Nothing to optimise: the map is the fixed positions.
+    result.iterations = 0;
+    const double k = cls.constant_max;
+    result.lower_bound = k;
+    result.history.push_back({0, k, k, 0.0, seconds_since(t0)});
+    return finish(p.positions);
+  }
+
+  // The main program: free elements (k), bounded elements (k_T), constant free elements (k >= kmin).
+  std::vector<int> elems = cls.free_elements;
+  elems.insert(elems.end(), cls.bounded_elements.begin(), cls.bounded_elements.end());
+  const int num_free_cones = static_cast<int>(cls.free_elements.size());
+  std::vector<int> vertex_dof(p.num_vertices, -1);
+  {
+    const std::vector<int> fi = p.free_index();
+    for (int v = 0; v < p.num_vertices; ++v)
+      if (fi[v] >= 0) vertex_dof[v] = fi[v] * n;
+  }
+  const int num_x = p.num_free() * n;
+  ConeProgram prog = socp::element_program(p, elems, vertex_dof, num_x, p.positions);
+  const bool has_kmin = cls.constant_max > -kInf;
+  for (int i = num_free_cones; i < prog.num_element_cones(); ++i) {
+    prog.head_a[i] = 0.0;
+    prog.head_b[i] = bounds[elems[i]];
+  }
+  if (has_kmin) {
+    prog.has_scalar = true;
+    prog.head_a.conservativeResize(prog.num_cones());
+    prog.head_b.conservativeResize(prog.num_cones());
+    prog.head_a[prog.num_cones() - 1] = 1.0;
+    prog.head_b[prog.num_cones() - 1] = -cls.constant_max;
+  }
+  const bool has_k = num_free_cones > 0 || has_kmin;
+  socp::restrict_equalities(p, vertex_dof, num_x, p.positions, p.fixed, prog);
+
+  socp::WeightedLeastSquares ls(prog);
+  if (!ls.ok()) {
+    result.status = SolveStatus::NumericalError;
+    result.message = "the L2 system is not positive definite (degenerate elements?)";
+    return finish(p.positions);
+  }
+
+  // Start: the L2 map or the given positions, whichever misses the bounds less (then has
+  // the lower maximum).
+  struct Candidate {
+    Eigen::VectorXd x;
+    double kmax = -kInf, excess = -kInf;
+  };
+  auto evaluate = [&](const Eigen::VectorXd& x) {
+    Candidate cd;
+    cd.x = x;
+    const Eigen::VectorXd d = socp::cone_distortions(prog, x);
+    for (int i = 0; i < prog.num_element_cones(); ++i) {
+      if (i < num_free_cones)
+        cd.kmax = std::max(cd.kmax, d[i]);
+      else
+        cd.excess = std::max(cd.excess, d[i] - prog.head_b[i]);
+    }
+    if (has_kmin) cd.kmax = std::max(cd.kmax, cls.constant_max);
+    return cd;
+  };
+  Candidate start = evaluate(ls.minimizer());
+  {
+    const Candidate given = evaluate(p.free_dofs(p.positions));
+    if (given.x.allFinite() && (given.excess < start.excess || (given.excess == start.excess && given.kmax < start.kmax)))
+      start = given;
+  }
+  const socp::IpmSettings settings = ipm_settings(options);
+  int total_iterations = 0;
+
+  // Phase 1 and relaxation of barely missed bounds.
+  double relax = 0;
+  if (!cls.bounded_elements.empty() && start.excess > 0) {
+    Phase1 ph = run_phase1(p, cls, bounds, p.with_free_dofs(start.x), options);
+    total_iterations += ph.iterations;
+    if (!ph.feasible) {
+      result.status = SolveStatus::Infeasible;
+      result.message = ph.message;
+      result.iterations = total_iterations;
+      return finish(ph.X);
+    }
+    start = evaluate(p.free_dofs(ph.X));
+    relax = std::max(0.0, start.excess);
+  }
+  if (relax > 0)
+    for (int i = num_free_cones; i < prog.num_element_cones(); ++i) prog.head_b[i] += relax;
+  if (!has_k) {
+    // Every non-constant element is bounded: the feasible map is the answer.
+    result.iterations = total_iterations;
+    result.message = "no free element: returned a map that meets the fixed bounds";
+    return finish(p.with_free_dofs(start.x));
+  }
+
+  // Phase 2: min k.
+  MainSolve ms;
+  ms.x = start.x;
+  auto bound_ok = [&](const Eigen::VectorXd& d) {
+    for (int i = num_free_cones; i < prog.num_element_cones(); ++i)
+      if (d[i] - prog.head_b[i] > options.feasibility_tolerance * std::max(1.0, prog.head_b[i])) return false;
+    return true;
+  };
+  auto equalities_ok = [&](const Eigen::VectorXd& x) {
+    if (prog.num_eq() == 0) return true;
+    const double scale = std::max(1.0, prog.beq.cwiseAbs().maxCoeff());
+    return (prog.A * x - prog.beq).cwiseAbs().maxCoeff() <= options.feasibility_tolerance * scale;
+  };
+  socp::IpmState st;
+  const double k0 = start_above(start.kmax);
+  socp::initialize(prog, start.x, k0, 1e-2 * (1.0 + std::abs(k0)), 1.0, st);
+  ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals&,
+                                                     const socp::IpmIteration& info) {
+    const Eigen::VectorXd d = socp::cone_distortions(prog, s.x);
+    double k = has_kmin ? cls.constant_max : -kInf;
+    for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+    if (k < ms.k && bound_ok(d) && equalities_ok(s.x)) {
+      ms.k = k;
+      ms.x = s.x;
+    }
+    ms.lower_bound = std::max(ms.lower_bound, socp::certified_lower_bound(prog, ls, s.z, s.y));
+    IterationRecord rec;
+    rec.iteration = info.iteration;
+    rec.max_distortion = k;
+    rec.lower_bound = ms.lower_bound;
+    rec.gap = k - ms.lower_bound;
+    rec.time_s = seconds_since(t0);
+    result.history.push_back(rec);
+    if (options.progress) options.progress(rec);
+    const double best_gap = ms.k - ms.lower_bound;
+    if (!std::isfinite(best_gap)) return false;  // no iterate meets the constraints yet
+    if (best_gap <= options.gap_tolerance * std::max(1.0, std::abs(ms.k))) return true;
+    // Stalled: the certified gap has not shrunk by 10% in 4 iterations while the Newton
+    // directions are unreliable (round-off dominates).
+    if (best_gap < 0.9 * ms.last_progress_gap) {
+      ms.last_progress_gap = best_gap;
+      ms.last_progress_iteration = info.iteration;
+    } else if (info.iteration - ms.last_progress_iteration >= 4 && info.kkt_residual > 1e-3) {
+      ms.stalled = true;
+      return true;
+    }
+    return false;
+  });
+  if (ms.stalled) {
+    ms.outcome.status = socp::IpmStatus::NumericalError;
+    ms.outcome.message = "the certified gap stopped improving (the Newton systems are too ill-conditioned)";
+  }
+  total_iterations += ms.outcome.iterations;
+  result.iterations = total_iterations;
+  result.lower_bound = std::min(ms.lower_bound, ms.k);
+  const double gap = ms.k - ms.lower_bound;
+  const double rel_gap = std::isfinite(gap) ? gap / std::max(1.0, std::abs(ms.k)) : kInf;
+  switch (ms.outcome.status) {
+    case socp::IpmStatus::Converged: result.status = SolveStatus::Solved; break;
+    case socp::IpmStatus::MaxIterations: result.status = SolveStatus::MaxIterations; break;
+    default:
+      result.status = rel_gap <= options.acceptable_gap_tolerance ? SolveStatus::Solved : SolveStatus::NumericalError;
+      break;
+  }
+  if (ms.outcome.status != socp::IpmStatus::Converged)
+    result.message = (result.status == SolveStatus::Solved ? "reduced accuracy: " : "") + ms.outcome.message +
+                     " (k = " + format(ms.k) + ", certified lower bound " + format(ms.lower_bound) +
+                     ", relative gap " + format(rel_gap) + ")";
+  else if (relax > 0)
+    result.message = "fixed bounds relaxed by " + format(relax) + " (missed by that much at best)";
+  if (!std::isfinite(ms.k)) {
+    // No iterate met the bounds: return the start (which meets them up to `relax`).
+    ms.x = start.x;
+  }
+  Eigen::MatrixXd X = p.with_free_dofs(ms.x);
+
+  // Section 5.1 (a): the least area-weighted L2 field deviation among the minimizers.
+  if (options.minimize_l2_among_optimal && result.status == SolveStatus::Solved) {
+    const double kstar = ms.k;
+    const double slack = options.l2_slack * std::max(1.0, kstar);
+    ConeProgram q = socp::element_program(p, elems, vertex_dof, num_x, p.positions);
+    q.has_k = false;
+    q.c_k = 0.0;
+    q.head_a.setZero();
+    for (int i = 0; i < q.num_element_cones(); ++i) q.head_b[i] = (i < num_free_cones ? kstar : prog.head_b[i]) + slack;
+    q.quad_weight = q.weight / q.weight.sum();
+    socp::restrict_equalities(p, vertex_dof, num_x, p.positions, p.fixed, q);
+    socp::IpmState st2;
+    const double margin = 0.05 * std::max(kstar, 1e-3);
+    socp::initialize(q, ms.x, 0.0, margin, 2.0 * margin * std::max(kstar, 1e-3) / q.num_cones(), st2);
+    Eigen::VectorXd best_x;
+    socp::IpmSettings s2 = settings;
+    const int offset = result.history.empty() ? 0 : result.history.back().iteration;
+    const auto out2 = socp::run_ipm(q, st2, s2, [&](const socp::IpmState& s, const socp::Residuals& r,
+                                                    const socp::IpmIteration& info) {
+      const Eigen::VectorXd d = socp::cone_distortions(q, s.x);
+      double k = has_kmin ? cls.constant_max : -kInf;
+      for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+      IterationRecord rec;
+      rec.iteration = offset + info.iteration;
+      rec.max_distortion = k;
+      rec.lower_bound = result.lower_bound;
+      rec.gap = k - result.lower_bound;
+      rec.time_s = seconds_since(t0);
+      result.history.push_back(rec);
+      if (options.progress) options.progress(rec);
+      return socp::default_converged(r, s2);
+    });
+    result.iterations += out2.iterations;
+    if (out2.status == socp::IpmStatus::Converged) {
+      X = p.with_free_dofs(st2.x);
+    } else {
+      result.status = out2.status == socp::IpmStatus::MaxIterations ? SolveStatus::MaxIterations
+                                                                     : SolveStatus::NumericalError;
+      result.message = "minimize_l2_among_optimal: " + out2.message + " (the L-infinity map is returned)";
+    }
+  }
+  return finish(X);
+}
+
+}  // namespace strictmin

@@ -1,0 +1,90 @@
+#include "strictmin/solvers/socp/certificate.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace strictmin::socp {
+
+WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p) : p_(p) {
+  const int n = p.n, m = p.m, c = p.corners(), F = p.num_x / n;
+  if (F == 0) return;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<size_t>(p.num_element_cones()) * c * c);
+  for (int i = 0; i < p.num_element_cones(); ++i) {
+    const double* g = p.grad.data() + static_cast<size_t>(i) * c * m;
+    for (int j1 = 0; j1 < c; ++j1) {
+      const int b1 = p.dof_base[i * c + j1];
+      if (b1 < 0) continue;
+      for (int j2 = 0; j2 < c; ++j2) {
+        const int b2 = p.dof_base[i * c + j2];
+        if (b2 < 0 || b2 > b1) continue;
+        double gram = 0;
+        for (int col = 0; col < m; ++col) gram += g[j1 * m + col] * g[j2 * m + col];
+        triplets.emplace_back(b1 / n, b2 / n, p.weight[i] * gram);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> K(F, F);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  cholesky_.analyze(K);
+  ok_ = cholesky_.factorize(K);
+}
+
+Eigen::VectorXd WeightedLeastSquares::solve(const Eigen::VectorXd& r) const {
+  const int n = p_.n, F = p_.num_x / n;
+  if (F == 0) return Eigen::VectorXd(0);
+  using RowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::MatrixXd B = Eigen::Map<const RowMat>(r.data(), F, n);
+  const RowMat X = cholesky_.solve(B);
+  return Eigen::Map<const Eigen::VectorXd>(X.data(), X.size());
+}
+
+Eigen::VectorXd WeightedLeastSquares::minimizer() const {
+  const int tt = p_.t();
+  Eigen::VectorXd wh(p_.h.size());
+  for (int i = 0; i < p_.num_element_cones(); ++i)
+    wh.segment(static_cast<Eigen::Index>(i) * tt, tt) = p_.weight[i] * p_.h.segment(static_cast<Eigen::Index>(i) * tt, tt);
+  Eigen::VectorXd rhs;
+  p_.apply_gt(wh.data(), tt, 0, rhs);
+  return solve(rhs);
+}
+
+double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& ls, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& y) {
+  constexpr double minus_inf = -std::numeric_limits<double>::infinity();
+  if (!p.has_k || p.has_quad() || !ls.ok()) return minus_inf;
+  const int tt = p.t(), E = p.num_element_cones();
+  // r = G^T z_tails + A^T y, and its correction.
+  Eigen::VectorXd r;
+  p.apply_gt(z.data(), tt + 1, 1, r);
+  if (p.num_eq() > 0) r.noalias() += p.A.transpose() * y;
+  Eigen::VectorXd delta;
+  if (p.num_x > 0) {
+    const Eigen::VectorXd u = ls.solve(r);
+    p.apply_g(u, delta);
+    for (int i = 0; i < E; ++i) delta.segment(static_cast<Eigen::Index>(i) * tt, tt) *= -p.weight[i];
+  } else {
+    delta.setZero(static_cast<Eigen::Index>(E) * tt);
+  }
+  double objective = 0, normalizer = 0;
+  for (int i = 0; i < E; ++i) {
+    const Eigen::Index o = p.cone_offset(i);
+    const auto d = delta.segment(static_cast<Eigen::Index>(i) * tt, tt);
+    const auto tail = z.segment(o + 1, tt);
+    // Head raised to keep the corrected point in the cone (also covers round-off in z).
+    const double head = std::max(z[o], tail.norm()) + d.norm();
+    objective += -p.head_b[i] * head + p.h.segment(static_cast<Eigen::Index>(i) * tt, tt).dot(tail + d);
+    normalizer += p.head_a[i] * head;
+  }
+  if (p.has_scalar) {
+    const double head = std::max(z[p.cone_offset(E)], 0.0);
+    objective += -p.head_b[E] * head;
+    normalizer += p.head_a[E] * head;
+  }
+  if (p.num_eq() > 0) objective += p.beq.dot(y);
+  if (!(normalizer > 0) || !std::isfinite(objective)) return minus_inf;
+  return p.c_k * objective / normalizer;
+}
+
+}  // namespace strictmin::socp

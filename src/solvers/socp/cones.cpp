@@ -1,0 +1,89 @@
+#include "strictmin/solvers/socp/cones.h"
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <tbb/parallel_reduce.h>
+#include <tbb/blocked_range.h>
+
+#include "strictmin/solvers/socp/soc.h"
+
+namespace strictmin::socp {
+namespace {
+
+constexpr int kGrain = 4096;
+
+template <class F>
+void for_each_cone(const ConeProgram& p, F&& f) {
+  parallel_for_index(p.num_cones(), kGrain, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) f(i, p.cone_offset(i), p.cone_dim(i));
+  });
+}
+
+template <class F>
+double min_over_cones(const ConeProgram& p, F&& f) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, p.num_cones(), kGrain), std::numeric_limits<double>::infinity(),
+      [&](const tbb::blocked_range<int>& r, double acc) {
+        for (int i = r.begin(); i < r.end(); ++i) acc = std::min(acc, f(p.cone_offset(i), p.cone_dim(i)));
+        return acc;
+      },
+      [](double a, double b) { return std::min(a, b); });
+}
+
+}  // namespace
+
+bool compute_scaling(const ConeProgram& p, const Eigen::VectorXd& s, const Eigen::VectorXd& z, Scaling& out) {
+  out.beta.resize(p.num_cones());
+  out.w.resize(p.cone_size());
+  out.lambda.resize(p.cone_size());
+  std::atomic<bool> ok{true};
+  for_each_cone(p, [&](int i, Eigen::Index o, int d) {
+    double beta = 1;
+    if (!nt_scaling(s.data() + o, z.data() + o, d, beta, out.w.data() + o)) {
+      ok = false;
+      return;
+    }
+    out.beta[i] = beta;
+    apply_w(beta, out.w.data() + o, d, z.data() + o, out.lambda.data() + o);
+  });
+  return ok;
+}
+
+void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const Eigen::VectorXd& u, Eigen::VectorXd& out) {
+  out.resize(p.cone_size());
+  for_each_cone(p, [&](int i, Eigen::Index o, int d) {
+    const double* w = sc.w.data() + o;
+    switch (op) {
+      case ScalingOp::W: apply_w(sc.beta[i], w, d, u.data() + o, out.data() + o); break;
+      case ScalingOp::WInv: apply_winv(sc.beta[i], w, d, u.data() + o, out.data() + o); break;
+      case ScalingOp::WInv2: apply_winv2(sc.beta[i], w, d, u.data() + o, out.data() + o); break;
+    }
+  });
+}
+
+void cone_product(const ConeProgram& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) {
+  out.resize(p.cone_size());
+  for_each_cone(p, [&](int, Eigen::Index o, int d) { jordan_product(a.data() + o, b.data() + o, d, out.data() + o); });
+}
+
+void cone_arrow_solve(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+  out.resize(p.cone_size());
+  for_each_cone(p, [&](int, Eigen::Index o, int d) { arrow_solve(l.data() + o, r.data() + o, d, out.data() + o); });
+}
+
+Eigen::VectorXd cone_identity(const ConeProgram& p, double value) {
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(p.cone_size());
+  for (int i = 0; i < p.num_cones(); ++i) e[p.cone_offset(i)] = value;
+  return e;
+}
+
+double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u) {
+  return min_over_cones(p, [&](Eigen::Index o, int d) { return max_step(l.data() + o, u.data() + o, d); });
+}
+
+double cone_min_margin(const ConeProgram& p, const Eigen::VectorXd& u) {
+  return min_over_cones(p, [&](Eigen::Index o, int d) { return u[o] - tail_norm(u.data() + o, d); });
+}
+
+}  // namespace strictmin::socp

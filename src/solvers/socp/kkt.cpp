@@ -1,0 +1,475 @@
+#include "strictmin/solvers/socp/kkt.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "strictmin/solvers/socp/ordering.h"
+#include "strictmin/solvers/socp/soc.h"
+
+namespace strictmin::socp {
+namespace {
+
+constexpr int kGrain = 1024;
+
+int pair_index(int l1, int l2) { return l1 * (l1 + 1) / 2 + l2; }  // l1 >= l2
+
+double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+}  // namespace
+
+NormalEquations::NormalEquations(const ConeProgram& program, const IpmSettings& settings)
+    : p_(program), settings_(settings) {
+  build_pattern();
+}
+
+void NormalEquations::build_pattern() {
+  const int N = p_.num_x, n = p_.n, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
+  npairs_ = L * (L + 1) / 2;
+  // Fill-reducing order of the free vertices, expanded to their n dofs.
+  {
+    const int F = N / n;
+    std::vector<std::vector<int>> nb(F);
+    for (int i = 0; i < E; ++i)
+      for (int a = 0; a < c; ++a)
+        for (int b = 0; b < c; ++b) {
+          const int fa = p_.dof_base[i * c + a], fb = p_.dof_base[i * c + b];
+          if (fa >= 0 && fb >= 0 && fa != fb) nb[fa / n].push_back(fb / n);
+        }
+    if (p_.num_eq() > 0) {  // equality rows couple their vertices too
+      for (int row = 0; row < p_.A.rows(); ++row)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator a(p_.A, row); a; ++a)
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator b(p_.A, row); b; ++b)
+            if (a.col() / n != b.col() / n) nb[a.col() / n].push_back(static_cast<int>(b.col() / n));
+    }
+    std::vector<int> offset(F + 1, 0), adj;
+    for (int f = 0; f < F; ++f) {
+      std::sort(nb[f].begin(), nb[f].end());
+      nb[f].erase(std::unique(nb[f].begin(), nb[f].end()), nb[f].end());
+      offset[f + 1] = offset[f] + static_cast<int>(nb[f].size());
+      adj.insert(adj.end(), nb[f].begin(), nb[f].end());
+    }
+    const std::vector<int> order = vertex_ordering(offset, adj);
+    perm_.assign(N, 0);
+    for (int i = 0; i < F; ++i)
+      for (int r = 0; r < n; ++r) perm_[order[i] * n + r] = i * n + r;
+  }
+  // Lower-triangle pattern (in the permuted numbering): element blocks, the diagonal, A^T A.
+  std::vector<Eigen::Triplet<double>> pattern;
+  pattern.reserve(static_cast<size_t>(E) * npairs_ + N);
+  std::vector<int> dof(L);
+  auto element_dofs = [&](int i) {
+    for (int j = 0; j < c; ++j)
+      for (int r = 0; r < n; ++r) {
+        const int base = p_.dof_base[i * c + j];
+        dof[j * n + r] = base < 0 ? -1 : perm_[base + r];
+      }
+  };
+  for (int i = 0; i < E; ++i) {
+    element_dofs(i);
+    for (int l1 = 0; l1 < L; ++l1)
+      for (int l2 = 0; l2 <= l1; ++l2)
+        if (dof[l1] >= 0 && dof[l2] >= 0)
+          pattern.emplace_back(std::max(dof[l1], dof[l2]), std::min(dof[l1], dof[l2]), 1.0);
+  }
+  for (int d = 0; d < N; ++d) pattern.emplace_back(d, d, 1.0);
+  Eigen::SparseMatrix<double> ata;
+  auto lower_of = [&](Eigen::Index r, Eigen::Index col) {
+    const int a = perm_[r], b = perm_[col];
+    return std::make_pair(std::max(a, b), std::min(a, b));
+  };
+  if (p_.num_eq() > 0) {
+    at_ = p_.A.transpose();
+    ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
+    for (int col = 0; col < ata.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it) {
+        const auto [r, cc] = lower_of(it.row(), it.col());
+        pattern.emplace_back(r, cc, 1.0);
+      }
+  }
+  matrix_.resize(N, N);
+  matrix_.setFromTriplets(pattern.begin(), pattern.end());
+  matrix_.makeCompressed();
+  pattern.clear();
+  pattern.shrink_to_fit();
+
+  const int* outer = matrix_.outerIndexPtr();
+  const int* inner = matrix_.innerIndexPtr();
+  auto find = [&](int row, int col) {
+    const int* first = inner + outer[col];
+    const int* last = inner + outer[col + 1];
+    return static_cast<int>(std::lower_bound(first, last, row) - inner);
+  };
+  const Eigen::Index nnz = matrix_.nonZeros();
+  slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
+  p_values_.setZero(nnz);
+  std::vector<int> count(nnz + 1, 0);
+  for (int i = 0; i < E; ++i) {
+    element_dofs(i);
+    const double* g = p_.grad.data() + static_cast<size_t>(i) * c * p_.m;
+    for (int l1 = 0; l1 < L; ++l1)
+      for (int l2 = 0; l2 <= l1; ++l2) {
+        if (dof[l1] < 0 || dof[l2] < 0) continue;
+        const int nz = find(std::max(dof[l1], dof[l2]), std::min(dof[l1], dof[l2]));
+        slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)] = nz;
+        ++count[nz + 1];
+        if (p_.has_quad() && l1 % n == l2 % n) {
+          double gram = 0;
+          for (int col = 0; col < p_.m; ++col) gram += g[(l1 / n) * p_.m + col] * g[(l2 / n) * p_.m + col];
+          p_values_[nz] += 2.0 * p_.quad_weight[i] * gram;
+        }
+      }
+  }
+  for (Eigen::Index z = 0; z < nnz; ++z) count[z + 1] += count[z];
+  gather_offset_.assign(count.begin(), count.end());
+  gather_.assign(count.back(), 0);
+  for (size_t slot = 0; slot < slot_target_.size(); ++slot)
+    if (slot_target_[slot] >= 0) gather_[count[slot_target_[slot]]++] = static_cast<int>(slot);
+  diagonal_.resize(N);
+  for (int d = 0; d < N; ++d) diagonal_[d] = find(perm_[d], perm_[d]);
+  ata_values_.setZero(nnz);
+  if (p_.num_eq() > 0)
+    for (int col = 0; col < ata.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it)
+        if (it.row() >= it.col()) {
+          const auto [r, cc] = lower_of(it.row(), it.col());
+          ata_values_[find(r, cc)] += it.value();
+        }
+  slot_values_.resize(static_cast<Eigen::Index>(E) * npairs_);
+  cone_k_.resize(static_cast<Eigen::Index>(E) * L);
+  // Supernodal symbolic analysis in our order (CHOLMOD's own ordering switched off).
+  llt_.cholmod().print = 0;
+  llt_.cholmod().nmethods = 1;
+  llt_.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+  if (N > 0) llt_.analyzePattern(matrix_);
+  if (settings_.verbose && N > 0)
+    std::fprintf(stderr, "kkt: %d dofs, %ld nonzeros, factor %.3g nonzeros, %.3g flops per factorisation\n", N,
+                 static_cast<long>(matrix_.nonZeros()), llt_.cholmod().lnz, llt_.cholmod().fl);
+}
+
+double NormalEquations::analyze_flops() const {
+  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>&>(llt_).cholmod().fl;
+}
+
+Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
+  const int N = p_.num_x;
+  Eigen::VectorXd bp(N), out(N);
+  for (int d = 0; d < N; ++d) bp[perm_[d]] = b[d];
+  const Eigen::VectorXd xp = llt_.solve(bp);
+  for (int d = 0; d < N; ++d) out[d] = xp[perm_[d]];
+  return out;
+}
+
+bool NormalEquations::factor(const Scaling& sc) {
+  scaling_ = &sc;
+  const auto tf0 = std::chrono::steady_clock::now();
+  auto lap = [last = tf0]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
+  const int N = p_.num_x, n = p_.n, m = p_.m, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
+  const bool has_k = p_.has_k;
+  // Element contributions, in parallel.
+  hkk_ = tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, E, kGrain), 0.0,
+      [&](const tbb::blocked_range<int>& range, double acc) {
+        double gram[16], pv[12], v[10];
+        for (int i = range.begin(); i < range.end(); ++i) {
+          const Eigen::Index o = p_.cone_offset(i);
+          const int d = p_.t() + 1;
+          winv2_vector(sc.w.data() + o, d, v);
+          const double ib2 = 1.0 / (sc.beta[i] * sc.beta[i]);
+          const double* g = p_.grad.data() + static_cast<size_t>(i) * c * m;
+          for (int j1 = 0; j1 < c; ++j1)
+            for (int j2 = 0; j2 <= j1; ++j2) {
+              double t = 0;
+              for (int col = 0; col < m; ++col) t += g[j1 * m + col] * g[j2 * m + col];
+              gram[j1 * c + j2] = t;
+            }
+          for (int j = 0; j < c; ++j)
+            for (int r = 0; r < n; ++r) {
+              double t = 0;
+              for (int col = 0; col < m; ++col) t += g[j * m + col] * v[1 + r * m + col];
+              pv[j * n + r] = t;
+            }
+          double* slots = slot_values_.data() + static_cast<Eigen::Index>(i) * npairs_;
+          for (int l1 = 0; l1 < L; ++l1)
+            for (int l2 = 0; l2 <= l1; ++l2) {
+              const double block = (l1 % n == l2 % n) ? gram[(l1 / n) * c + (l2 / n)] : 0.0;
+              slots[pair_index(l1, l2)] = ib2 * (block + 2.0 * pv[l1] * pv[l2]);
+            }
+          if (has_k) {
+            const double a = p_.head_a[i];
+            double* kv = cone_k_.data() + static_cast<Eigen::Index>(i) * L;
+            for (int l = 0; l < L; ++l) kv[l] = a * ib2 * 2.0 * v[0] * pv[l];
+            acc += a * a * ib2 * (2.0 * v[0] * v[0] - 1.0);
+          }
+        }
+        return acc;
+      },
+      [](double a, double b) { return a + b; });
+  if (has_k && p_.has_scalar) {
+    const int i = E;
+    const double b = sc.beta[i];
+    hkk_ += p_.head_a[i] * p_.head_a[i] / (b * b);
+  }
+  if (N == 0) {
+    schur_ = hkk_ > 0 ? hkk_ : 1.0;
+    return std::isfinite(hkk_);
+  }
+  // Gather into the matrix.
+  double* values = matrix_.valuePtr();
+  const double max_diag_raw = [&] {
+    parallel_for_index(static_cast<int>(matrix_.nonZeros()), 8 * kGrain, [&](int begin, int end) {
+      for (int z = begin; z < end; ++z) {
+        double t = p_values_[z];
+        for (int e = gather_offset_[z]; e < gather_offset_[z + 1]; ++e) t += slot_values_[gather_[e]];
+        values[z] = t;
+      }
+    });
+    double mx = 0;
+    for (int d = 0; d < N; ++d) mx = std::max(mx, values[diagonal_[d]]);
+    return mx;
+  }();
+  const double t_assemble = lap();
+  if (!std::isfinite(max_diag_raw) || max_diag_raw <= 0) return false;
+  inv_rho_ = p_.num_eq() > 0 ? max_diag_raw / settings_.equality_penalty : 0.0;
+  if (p_.num_eq() > 0)
+    for (Eigen::Index z = 0; z < matrix_.nonZeros(); ++z) values[z] += inv_rho_ * ata_values_[z];
+  // Regularisation relative to each diagonal entry (they span many orders of magnitude near
+  // the optimum), with a floor relative to the largest.
+  delta_ = settings_.regularization;
+  diag_saved_.resize(N);
+  for (int d = 0; d < N; ++d) diag_saved_[d] = values[diagonal_[d]];
+  bool ok = false;
+  for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
+    if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
+    const double floor = 1e-3 * delta_ * max_diag_raw;
+    for (int d = 0; d < N; ++d) values[diagonal_[d]] = diag_saved_[d] * (1.0 + delta_) + floor;
+    llt_.factorize(matrix_);
+    ok = llt_.info() == Eigen::Success;
+  }
+  const double t_factor = lap();
+  if (!ok) return false;
+  if (has_k) {
+    hxk_.setZero(N);
+    const int free_vertices = N / n;
+    parallel_for_index(free_vertices, kGrain, [&](int begin, int end) {
+      for (int f = begin; f < end; ++f)
+        for (int e = p_.incidence_offset[f]; e < p_.incidence_offset[f + 1]; ++e) {
+          const int i = p_.incidence[e] / c, j = p_.incidence[e] % c;
+          for (int r = 0; r < n; ++r) hxk_[f * n + r] += cone_k_[static_cast<Eigen::Index>(i) * L + j * n + r];
+        }
+    });
+    u_ = llt_solve(hxk_);
+    // S = h_kk - h_xk^T u cancels badly near the optimum (each active cone adds two huge,
+    // nearly equal terms). The same number is min over x of (x,1)^T H (x,1), attained at
+    // x = -u: S = sum_i ||W_i^{-1} M_i (-u, 1)||^2, a sum of squares without cancellation
+    // (plus the regularisation's share, which the factor also contains).
+    Eigen::VectorXd mv, wm;
+    p_.apply_m(-u_, 1.0, false, mv);
+    apply_scaling(p_, sc, ScalingOp::WInv, mv, wm);
+    double reg_part = 0;
+    for (int d = 0; d < N; ++d) reg_part += (values[diagonal_[d]] - diag_saved_[d]) * u_[d] * u_[d];
+    schur_ = wm.squaredNorm() + reg_part;
+    if (p_.has_quad()) {
+      Eigen::VectorXd pu;
+      p_.apply_p(u_, pu);
+      schur_ += u_.dot(pu);
+    }
+    if (!(schur_ > 0) || !std::isfinite(schur_) || !u_.allFinite()) return false;
+  }
+  if (settings_.verbose >= 2)
+    std::fprintf(stderr, "kkt: assemble %.4fs factorize %.4fs bordering %.4fs\n", t_assemble, t_factor, lap());
+  return true;
+}
+
+void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2,
+                                   Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w) const {
+  dk = 0;
+  if (p_.num_x == 0) {
+    dx.resize(0);
+    if (p_.has_k) dk = r1k / schur_;
+    w.setZero(p_.num_eq());
+    return;
+  }
+  Eigen::VectorXd b = r1x;
+  if (p_.num_eq() > 0) b.noalias() += inv_rho_ * (at_ * r2);
+  dx = llt_solve(b);
+  if (p_.has_k) {
+    dk = (r1k - hxk_.dot(dx)) / schur_;
+    dx.noalias() -= dk * u_;
+  }
+  if (p_.num_eq() > 0)
+    w = inv_rho_ * (p_.A * dx - r2);
+  else
+    w.resize(0);
+}
+
+void NormalEquations::apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const {
+  Eigen::VectorXd mv, t1, t2;
+  p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, t1);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, t1, t2);
+  p_.apply_mt(t2, ox, ok);
+  if (p_.has_quad()) {
+    Eigen::VectorXd px;
+    p_.apply_p(dx, px);
+    ox += px;
+  }
+  if (p_.num_eq() > 0) ox.noalias() += inv_rho_ * (at_ * (p_.A * dx));
+  if (!p_.has_k) ok = 0;
+}
+
+int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold, Eigen::VectorXd& x, double& k) const {
+  // Preconditioned conjugate gradients on (H + P + A^T A / rho) (x, k) = (bx, bk), the factor
+  // (with its regularisation and bordering) as the preconditioner. Near the optimum the
+  // factor is accurate except in a few directions, which CG removes in a few steps.
+  const Eigen::VectorXd zero_eq = Eigen::VectorXd::Zero(p_.num_eq());
+  Eigen::VectorXd w, zx, px, apx;
+  double zk = 0, pk = 0, apk = 0;
+  solve_normal(bx, bk, zero_eq, x, k, w);
+  if (p_.num_x == 0) return 0;
+  if (!(std::max(max_abs(bx), std::abs(bk)) > 0)) return 0;
+  Eigen::VectorXd rx;
+  double rk = 0;
+  apply_normal(x, k, rx, rk);
+  rx = bx - rx;
+  rk = bk - rk;
+  if (std::max(max_abs(rx), std::abs(rk)) <= threshold) return 0;
+  solve_normal(rx, rk, zero_eq, zx, zk, w);
+  px = zx;
+  pk = zk;
+  double rz = rx.dot(zx) + rk * zk;
+  // CG residuals are not monotone in the max norm: keep the best iterate, stop on stagnation.
+  double best = std::max(max_abs(rx), std::abs(rk));
+  Eigen::VectorXd best_x = x;
+  double best_k = k;
+  int it = 0, stagnant = 0;
+  for (; it < settings_.refinement_steps; ++it) {
+    if (best <= threshold || !(rz > 0) || stagnant >= 3) break;
+    apply_normal(px, pk, apx, apk);
+    const double pap = px.dot(apx) + pk * apk;
+    if (!(pap > 0)) break;
+    const double alpha = rz / pap;
+    x += alpha * px;
+    k += alpha * pk;
+    rx -= alpha * apx;
+    rk -= alpha * apk;
+    const double res = std::max(max_abs(rx), std::abs(rk));
+    if (res < best) {
+      best = res;
+      best_x = x;
+      best_k = k;
+      stagnant = 0;
+    } else {
+      ++stagnant;
+    }
+    solve_normal(rx, rk, zero_eq, zx, zk, w);
+    const double rz_new = rx.dot(zx) + rk * zk;
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    px = zx + beta * px;
+    pk = zk + beta * pk;
+  }
+  x.swap(best_x);
+  k = best_k;
+  return it;
+}
+
+void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc,
+                                      const Eigen::VectorXd& re, Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w,
+                                      Eigen::VectorXd& dz, double threshold, int& steps) const {
+  // dz = W^{-1} (rc - W^{-1} M dv);  (H + P) dv + A~^T w = M^T W^{-1} rc - rd,  A~ dv = re,
+  // the equalities by the penalty: w = (A dx - re) / rho.
+  Eigen::VectorXd t, r1x, mv;
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, rc, t);
+  double r1k = 0;
+  p_.apply_mt(t, r1x, r1k);
+  r1x -= rdx;
+  r1k -= rdk;
+  if (p_.num_eq() > 0) r1x.noalias() += inv_rho_ * (at_ * re);
+  steps = pcg(r1x, p_.has_k ? r1k : 0.0, threshold, dx, dk);
+  if (p_.num_eq() > 0)
+    w = inv_rho_ * (p_.A * dx - re);
+  else
+    w.resize(0);
+  p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, t);
+  t = rc - t;
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, t, dz);
+}
+
+void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx,
+                                   double rdk, const Eigen::VectorXd& req, Direction& d) {
+  const Scaling& sc = *scaling_;
+  Eigen::VectorXd rc, t;
+  apply_scaling(p_, sc, ScalingOp::WInv, rs, t);
+  rc = q + t;
+  const Eigen::VectorXd re = -req;
+  Eigen::VectorXd w;
+  int steps = 0;
+  // The CG residual is the dual residual of the direction: aim at refinement_tolerance
+  // relative to this system's right-hand side, but no lower than round-off in dual units.
+  const double scale = std::max({max_abs(rc), max_abs(rdx), std::abs(rdk), max_abs(re), 1e-300});
+  const double threshold = std::max(settings_.refinement_tolerance * scale, 1e-14);
+  solve_unreduced(rdx, rdk, rc, re, d.dx, d.dk, w, d.dz, threshold, steps);
+  d.refinement = steps;
+  // Residuals of the unreduced system.
+  Eigen::VectorXd ex, ec, ee, mv, px, gx, cx, cw, cz;
+  double ek = 0, ck = 0;
+  auto residual = [&] {
+    double gk = 0;
+    p_.apply_mt(d.dz, gx, gk);  // M^T dz
+    ex = rdx - gx;
+    if (p_.has_quad()) {
+      p_.apply_p(d.dx, px);
+      ex += px;
+    }
+    if (p_.num_eq() > 0) ex.noalias() += at_ * w;  // -A^T dy = +A^T w
+    ek = p_.has_k ? rdk - gk : 0.0;
+    p_.apply_m(d.dx, p_.has_k ? d.dk : 0.0, false, mv);
+    apply_scaling(p_, sc, ScalingOp::WInv, mv, t);
+    apply_scaling(p_, sc, ScalingOp::W, d.dz, ec);
+    ec = rc - t - ec;
+    ee = p_.num_eq() > 0 ? Eigen::VectorXd(re - p_.A * d.dx) : Eigen::VectorXd();
+    if (settings_.verbose >= 2)
+      std::fprintf(stderr, "kkt: residual dual %.2e k %.2e compl %.2e eq %.2e (scale %.2e, %d cg steps)\n",
+                   max_abs(ex) / scale, std::abs(ek) / scale, max_abs(ec) / scale, max_abs(ee) / scale, scale, steps);
+    return std::max({max_abs(ex), std::abs(ek), max_abs(ec), max_abs(ee)}) / scale;
+  };
+  double best = residual();
+  // Outer refinement: removes the penalty's effect on the equalities (and any rest).
+  const int outer = p_.num_eq() > 0 ? 3 : 0;
+  for (int step = 0; step < outer && best > settings_.refinement_tolerance; ++step) {
+    solve_unreduced(ex, ek, ec, ee, cx, ck, cw, cz, threshold, steps);
+    d.refinement += steps + 1;
+    d.dx += cx;
+    d.dk += ck;
+    d.dz += cz;
+    if (w.size()) w += cw;
+    const double res = residual();
+    if (!(res < best)) {  // no progress: undo and stop
+      d.dx -= cx;
+      d.dk -= ck;
+      d.dz -= cz;
+      if (w.size()) w -= cw;
+      break;
+    }
+    best = res;
+  }
+  d.residual = best;
+  d.dy = -w;
+  // Cone parts: ds from the (linear) primal equation, scaled forms for the step.
+  p_.apply_m(d.dx, p_.has_k ? d.dk : 0.0, false, mv);
+  d.ds = mv - rs;
+  apply_scaling(p_, sc, ScalingOp::WInv, d.ds, d.dst);
+  apply_scaling(p_, sc, ScalingOp::W, d.dz, d.dzt);
+}
+
+}  // namespace strictmin::socp

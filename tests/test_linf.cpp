@@ -1,0 +1,414 @@
+// The L-infinity solver (solve_linf) and its interior-point parts (solvers/socp/):
+// - second-order cone algebra: NT scaling identities, arrow solves, steps to the boundary;
+// - optimality: the certified lower bound meets k (relative gap 1e-8), L-inf beats L2 on
+//   the paper's Figure 2 square, affine handles give k = ||A - I||_F on every element;
+// - fixed bounds: met, infeasible (reported with the amount), constant elements;
+// - tets, a real surface with slivers (camelhead), random rotation targets, equalities;
+// - minimize_l2_among_optimal keeps k and lowers the L2 energy.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <random>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/socp/soc.h"
+
+using namespace strictmin;
+
+namespace {
+
+double relative_gap(const Result& r) {
+  const double k = r.distortion.maxCoeff();
+  return (k - r.lower_bound) / std::max(1.0, std::abs(k));
+}
+
+// Certified bound, gap and sanity of a solved L-infinity result (every element free).
+void expect_solved(const Result& r, double gap = 1e-8) {
+  ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
+  ASSERT_TRUE(r.positions.allFinite());
+  ASSERT_TRUE(r.distortion.allFinite());
+  const double k = r.distortion.maxCoeff();
+  EXPECT_LE(r.lower_bound, k + 1e-12);
+  EXPECT_LE(relative_gap(r), gap) << "k = " << k << ", lower bound = " << r.lower_bound;
+  ASSERT_FALSE(r.history.empty());
+  EXPECT_EQ(r.history.back().iteration, r.history.size() - 1);
+}
+
+Eigen::Matrix2d rotation2(double a) {
+  Eigen::Matrix2d R;
+  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  return R;
+}
+
+std::vector<int> grid_boundary(int nx, int ny) {
+  std::vector<int> b;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      if (i == 0 || j == 0 || i == nx || j == ny) b.push_back(j * (nx + 1) + i);
+  return b;
+}
+
+// Figure 2: unit square, boundary fixed, centre moved sideways.
+Problem figure2_problem(int cells, double shift) {
+  const Mesh mesh = make_grid(cells, cells);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> handles;
+  for (int v : grid_boundary(cells, cells)) handles.push_back({v, mesh.V.row(v).transpose()});
+  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  handles.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + shift, mesh.V(centre, 1))});
+  p.fix(handles);
+  return p;
+}
+
+// --- cone algebra ------------------------------------------------------------------------
+
+TEST(SocAlgebra, NesterovToddScalingIdentities) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> N(0.0, 1.0);
+  for (int d : {1, 2, 5, 10}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::VectorXd s(d), z(d), u(d);
+      for (int i = 0; i < d; ++i) s[i] = N(rng), z[i] = N(rng), u[i] = N(rng);
+      s[0] = s.tail(d - 1).norm() + std::exp(N(rng));
+      z[0] = z.tail(d - 1).norm() + 1e-3 * std::exp(N(rng));
+      double beta = 0;
+      Eigen::VectorXd w(d), lz(d), ls(d), a(d), b(d), c(d);
+      ASSERT_TRUE(socp::nt_scaling(s.data(), z.data(), d, beta, w.data()));
+      socp::apply_w(beta, w.data(), d, z.data(), lz.data());
+      socp::apply_winv(beta, w.data(), d, s.data(), ls.data());
+      EXPECT_LT((lz - ls).norm(), 1e-10 * ls.norm()) << "W z = W^-1 s, d = " << d;
+      EXPECT_TRUE(socp::soc_interior(lz.data(), d));
+      socp::apply_w(beta, w.data(), d, u.data(), a.data());
+      socp::apply_winv(beta, w.data(), d, a.data(), b.data());
+      EXPECT_LT((b - u).norm(), 1e-10 * u.norm());
+      socp::apply_winv(beta, w.data(), d, u.data(), a.data());
+      socp::apply_winv(beta, w.data(), d, a.data(), b.data());
+      socp::apply_winv2(beta, w.data(), d, u.data(), c.data());
+      EXPECT_LT((b - c).norm(), 1e-10 * b.norm()) << "W^-2 = (W^-1)^2";
+      // Arrow solve inverts the Jordan product.
+      socp::jordan_product(lz.data(), u.data(), d, a.data());
+      socp::arrow_solve(lz.data(), a.data(), d, b.data());
+      EXPECT_LT((b - u).norm(), 1e-9 * u.norm());
+      // The longest step lands on the boundary.
+      const double alpha = socp::max_step(s.data(), u.data(), d);
+      if (std::isfinite(alpha)) {
+        const Eigen::VectorXd e = s + alpha * u;
+        EXPECT_NEAR(e[0] - e.tail(d - 1).norm(), 0.0, 1e-9 * (1 + e.norm()));
+        const Eigen::VectorXd inside = s + 0.999 * alpha * u;
+        EXPECT_TRUE(socp::soc_interior(inside.data(), d));
+      } else {
+        const Eigen::VectorXd far = s + 1e6 * u;
+        EXPECT_GE(far[0], far.tail(d - 1).norm() * (1 - 1e-12));
+      }
+    }
+  }
+}
+
+// --- optimality --------------------------------------------------------------------------
+
+TEST(Linf, Figure2SquareBeatsL2WithCertifiedGap) {
+  const Problem p = figure2_problem(20, 0.2);
+  const Result l2 = solve_l2(p);
+  ASSERT_TRUE(l2.ok());
+  int calls = 0;
+  LinfOptions o;
+  o.progress = [&](const IterationRecord&) { ++calls; };
+  const Result r = solve_linf(p, o);
+  expect_solved(r);
+  EXPECT_LT(r.distortion.maxCoeff(), l2.distortion.maxCoeff() - 1e-3);
+  EXPECT_EQ(calls, static_cast<int>(r.history.size()));
+  EXPECT_LE(r.iterations, 40);
+  std::printf("figure 2 (20x20): k = %.10f (L2 max %.6f), bound %.10f, %d iterations\n", r.distortion.maxCoeff(),
+              l2.distortion.maxCoeff(), r.lower_bound, r.iterations);
+}
+
+TEST(Linf, AffineHandlesGiveTheAffineMapAndItsDistortion) {
+  // Every element must have J = A (the mean of J over the square is A, Jensen), so
+  // k = ||A - I||_F on every element, certified.
+  const int cells = 8;
+  const Mesh mesh = make_grid(cells, cells);
+  Problem p = make_problem(mesh);
+  Eigen::Matrix2d A;
+  A << 1.3, 0.4, -0.2, 0.8;
+  const Eigen::Vector2d b(0.1, -0.3);
+  std::vector<Handle> handles;
+  for (int v : grid_boundary(cells, cells)) handles.push_back({v, A * mesh.V.row(v).transpose() + b});
+  p.fix(handles);
+  const Result r = solve_linf(p);
+  expect_solved(r);
+  const double expected = (A - Eigen::Matrix2d::Identity()).norm();
+  EXPECT_NEAR(r.distortion.maxCoeff(), expected, 1e-7 * expected);
+  EXPECT_NEAR(r.distortion.minCoeff(), expected, 1e-6 * expected);
+  EXPECT_GE(r.lower_bound, expected * (1 - 1e-7));
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    EXPECT_LT((r.positions.row(v).transpose() - (A * mesh.V.row(v).transpose() + b)).norm(), 1e-6);
+}
+
+TEST(Linf, AffineHandlesOnTets) {
+  const Mesh mesh = make_tet_box(3, 3, 3);
+  Problem p = make_problem(mesh);
+  Eigen::Matrix3d A;
+  A << 1.1, 0.2, 0.0, -0.1, 0.9, 0.3, 0.05, 0.0, 1.2;
+  std::vector<Handle> handles;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d q = mesh.V.row(v).transpose();
+    if (q.minCoeff() < 1e-12 || q.maxCoeff() > 1 - 1e-12) handles.push_back({v, A * q});
+  }
+  p.fix(handles);
+  const Result r = solve_linf(p);
+  expect_solved(r);
+  const double expected = (A - Eigen::Matrix3d::Identity()).norm();
+  EXPECT_NEAR(r.distortion.maxCoeff(), expected, 1e-7 * expected);
+  EXPECT_NEAR(r.distortion.minCoeff(), expected, 1e-6 * expected);
+}
+
+TEST(Linf, TetBoxWithHandles) {
+  const int n = 4;
+  const Mesh mesh = make_tet_box(n, n, n);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> handles;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int k = v / ((n + 1) * (n + 1));
+    if (k == 0) handles.push_back({v, mesh.V.row(v).transpose()});
+    if (k == n) handles.push_back({v, mesh.V.row(v).transpose() + Eigen::Vector3d(0.4, 0.1, 0.2)});
+  }
+  p.fix(handles);
+  const Result l2 = solve_l2(p);
+  const Result r = solve_linf(p);
+  expect_solved(r);
+  EXPECT_LE(r.distortion.maxCoeff(), l2.distortion.maxCoeff() + 1e-9);
+  std::printf("tet box %d^3 (%d tets): k = %.8f, %d iterations\n", n, p.num_elements(), r.distortion.maxCoeff(),
+              r.iterations);
+}
+
+TEST(Linf, RandomRotationTargetsIterationCountsStayFlat) {
+  std::vector<int> iterations;
+  for (int size : {8, 16, 32}) {
+    const Mesh mesh = make_grid(4 * size, size, 4.0, 1.0);
+    Problem p = make_problem(mesh);
+    std::mt19937 rng(size);
+    std::uniform_real_distribution<double> angle(-0.6, 0.6);
+    for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, rotation2(angle(rng)));
+    std::vector<Handle> handles;
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      const int i = v % (4 * size + 1);
+      if (i == 0) handles.push_back({v, mesh.V.row(v).transpose()});
+      if (i == 4 * size) handles.push_back({v, mesh.V.row(v).transpose() + Eigen::Vector2d(0.5, 1.0)});
+    }
+    p.fix(handles);
+    const Result r = solve_linf(p);
+    expect_solved(r);
+    iterations.push_back(r.iterations);
+    std::printf("bar %dx%d (%d triangles), random rotations: k = %.8f, %d iterations, %.3f s\n", 4 * size, size,
+                p.num_elements(), r.distortion.maxCoeff(), r.iterations, r.time_s);
+  }
+  for (int it : iterations) EXPECT_LE(it, 40);
+}
+
+TEST(Linf, ProgressAndHistory) {
+  const Problem p = figure2_problem(6, 0.1);
+  std::vector<IterationRecord> seen;
+  LinfOptions o;
+  o.progress = [&](const IterationRecord& r) { seen.push_back(r); };
+  const Result r = solve_linf(p, o);
+  expect_solved(r);
+  ASSERT_EQ(seen.size(), r.history.size());
+  for (size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].iteration, static_cast<int>(i));
+    EXPECT_LE(seen[i].lower_bound, r.distortion.maxCoeff() + 1e-12) << "every bound is certified";
+    if (i > 0) {
+      EXPECT_GE(seen[i].time_s, seen[i - 1].time_s);
+    }
+  }
+  EXPECT_NEAR(r.history.back().max_distortion, r.distortion.maxCoeff(), 1e-12);
+}
+
+// --- fixed bounds and constant elements -------------------------------------------------
+
+TEST(Linf, FixedBoundsAreMetAndLowerTheRest) {
+  // One step of the strict-minimizer algorithm: bound the elements at the maximum, minimize
+  // the rest.
+  const Problem p = figure2_problem(10, 0.15);
+  const Result r1 = solve_linf(p);
+  expect_solved(r1);
+  const double k1 = r1.distortion.maxCoeff();
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  int bounded = 0;
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (r1.distortion[e] >= k1 - 1e-6) {
+      o.element_bounds[e] = k1;
+      ++bounded;
+    }
+  ASSERT_GT(bounded, 0);
+  ASSERT_LT(bounded, p.num_elements());
+  Problem p2 = p;
+  p2.positions = r1.positions;  // start from the previous map (meets the bounds)
+  const Result r2 = solve_linf(p2, o);
+  ASSERT_EQ(r2.status, SolveStatus::Solved) << r2.message;
+  double k2 = 0;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    if (o.element_bounds[e] >= 0)
+      EXPECT_LE(r2.distortion[e], k1 + 1e-7);
+    else
+      k2 = std::max(k2, r2.distortion[e]);
+  }
+  EXPECT_LE(k2, k1 + 1e-9);
+  EXPECT_LE(r2.lower_bound, k2 + 1e-12);
+  EXPECT_LE(k2 - r2.lower_bound, 1e-6 * std::max(1.0, k2));
+  std::printf("bounded %d elements at k1 = %.8f: k2 = %.8f (bound %.8f), %d iterations\n", bounded, k1, k2,
+              r2.lower_bound, r2.iterations);
+}
+
+TEST(Linf, InfeasibleBoundsAreReportedWithTheAmount) {
+  // Every element bounded by 0.05: the centre moves 0.2 while the boundary (0.5 away) stays,
+  // so |J - I| >= 0.4 somewhere. Phase 1 certifies it.
+  const Problem p = figure2_problem(8, 0.2);
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), 0.05);
+  const Result r = solve_linf(p, o);
+  EXPECT_EQ(r.status, SolveStatus::Infeasible) << r.message;
+  EXPECT_NE(r.message.find("cannot all be met"), std::string::npos) << r.message;
+  EXPECT_TRUE(r.positions.allFinite());
+  // A bound of zero on a single element that must deform.
+  LinfOptions o2;
+  o2.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  const Result free = solve_linf(p);
+  int worst = 0;
+  free.distortion.maxCoeff(&worst);
+  Problem tiny = figure2_problem(2, 0.2);  // every vertex fixed: all elements constant
+  LinfOptions o3;
+  o3.element_bounds = Eigen::VectorXd::Constant(tiny.num_elements(), 0.0);
+  const Result r3 = solve_linf(tiny, o3);
+  EXPECT_EQ(r3.status, SolveStatus::Infeasible);
+  EXPECT_NE(r3.message.find("every vertex fixed"), std::string::npos) << r3.message;
+}
+
+TEST(Linf, ConstantElementsBoundK) {
+  // The left quarter of a bar is entirely fixed, with a shear: its elements are constants
+  // with D = 0.3 (k >= 0.3); the right end is moved a little.
+  const int nx = 16, ny = 4;
+  const Mesh mesh = make_grid(nx, ny, 4.0, 1.0);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> handles;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int i = v % (nx + 1);
+    const Eigen::Vector2d q = mesh.V.row(v).transpose();
+    if (i <= 4) handles.push_back({v, Eigen::Vector2d(q.x() + 0.3 * q.y(), q.y())});
+    if (i == nx) handles.push_back({v, q + Eigen::Vector2d(0.05, 0.0)});
+  }
+  p.fix(handles);
+  const Result r = solve_linf(p);
+  expect_solved(r);
+  EXPECT_NEAR(r.distortion.maxCoeff(), 0.3, 1e-8);
+  EXPECT_NEAR(r.lower_bound, 0.3, 1e-8);
+  // Every vertex fixed: nothing to solve, k is the constants' maximum.
+  Problem all = make_problem(make_grid(3, 3));
+  std::vector<Handle> every;
+  for (int v = 0; v < all.num_vertices; ++v) every.push_back({v, all.positions.row(v).transpose() * 1.1});
+  all.fix(every);
+  const Result r2 = solve_linf(all);
+  EXPECT_EQ(r2.status, SolveStatus::Solved) << r2.message;
+  EXPECT_NEAR(r2.distortion.maxCoeff(), 0.1 * std::sqrt(2.0), 1e-12);
+}
+
+TEST(Linf, RejectsBoundsOfTheWrongSize) {
+  const Problem p = figure2_problem(4, 0.1);
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(3, 1.0);
+  EXPECT_THROW(solve_linf(p, o), InputError);
+}
+
+TEST(Linf, UndeterminedMapIsANumericalError) {
+  const Problem p = make_problem(make_grid(4, 4));  // nothing fixed
+  const Result r = solve_linf(p);
+  EXPECT_EQ(r.status, SolveStatus::NumericalError);
+  EXPECT_NE(r.message.find("not determined"), std::string::npos) << r.message;
+}
+
+// --- equalities and the L2 choice among minimizers -----------------------------------------
+
+TEST(Linf, EqualityConstraintsActLikeHandles) {
+  // Fixing the centre by two equality rows gives the same optimum as fixing it by a handle.
+  const int cells = 10;
+  const Problem with_handle = figure2_problem(cells, 0.2);
+  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  Problem with_eq = with_handle;
+  with_eq.fixed[centre] = 0;
+  with_eq.eq_matrix.resize(2, 2 * with_eq.num_vertices);
+  std::vector<Eigen::Triplet<double>> t = {{0, 2 * centre, 1.0}, {1, 2 * centre + 1, 1.0}};
+  with_eq.eq_matrix.setFromTriplets(t.begin(), t.end());
+  with_eq.eq_rhs = with_handle.positions.row(centre).transpose();
+  const Result a = solve_linf(with_handle);
+  const Result b = solve_linf(with_eq);
+  expect_solved(a);
+  expect_solved(b, 1e-7);
+  EXPECT_NEAR(a.distortion.maxCoeff(), b.distortion.maxCoeff(), 1e-7);
+  EXPECT_LT((b.positions.row(centre) - with_handle.positions.row(centre)).norm(), 1e-8);
+}
+
+TEST(Linf, MinimizeL2AmongOptimalKeepsKAndLowersTheEnergy) {
+  const Problem p = figure2_problem(12, 0.2);
+  const Result r1 = solve_linf(p);
+  expect_solved(r1);
+  LinfOptions o;
+  o.minimize_l2_among_optimal = true;
+  const Result r2 = solve_linf(p, o);
+  ASSERT_EQ(r2.status, SolveStatus::Solved) << r2.message;
+  const double k1 = r1.distortion.maxCoeff();
+  EXPECT_LE(r2.distortion.maxCoeff(), k1 + o.l2_slack * std::max(1.0, k1) + 1e-9);
+  auto energy = [&](const Result& r) { return (p.weights.array() * r.distortion.array().square()).sum(); };
+  EXPECT_LE(energy(r2), energy(r1) + 1e-12);
+  EXPECT_EQ(r2.lower_bound, r2.lower_bound);  // kept from the L-infinity solve
+  std::printf("L2 among optimal: energy %.8f -> %.8f, k %.10f -> %.10f, %d -> %d iterations\n", energy(r1), energy(r2),
+              k1, r2.distortion.maxCoeff(), r1.iterations, r2.iterations);
+}
+
+// --- a real surface ------------------------------------------------------------------------
+
+TEST(Linf, CamelheadSurfaceWithThreeFixedVertices) {
+  const std::string path = std::string(STRICTMIN_SHARED_DATA) + "/disk/camelhead.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const Mesh mesh = read_mesh(path);
+  Problem p = make_problem(mesh);  // per-triangle 2D frames, identity targets
+  // Three boundary vertices, placed where an L2 map with one pinned vertex puts them.
+  std::map<std::pair<int, int>, int> edges;
+  for (int f = 0; f < mesh.num_elements(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      int a = mesh.F(f, j), c = mesh.F(f, (j + 1) % 3);
+      ++edges[{std::min(a, c), std::max(a, c)}];
+    }
+  std::vector<int> boundary;
+  for (const auto& [e, count] : edges)
+    if (count == 1) boundary.push_back(e.first);
+  std::sort(boundary.begin(), boundary.end());
+  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+  ASSERT_GE(boundary.size(), 3u);
+  Problem pinned = p;
+  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
+  const Result l2 = solve_l2(pinned);
+  ASSERT_TRUE(l2.ok()) << l2.message;
+  std::vector<Handle> handles;
+  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
+    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
+  p.fix(handles);
+  const Result r = solve_linf(p);
+  ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
+  ASSERT_TRUE(r.positions.allFinite());
+  ASSERT_TRUE(r.distortion.allFinite());
+  EXPECT_LE(r.lower_bound, r.distortion.maxCoeff());
+  EXPECT_LE(relative_gap(r), 1e-6) << r.message;  // "reduced accuracy" allowed on this graded mesh
+  EXPECT_LT(r.distortion.maxCoeff(), l2.distortion.maxCoeff());
+  std::printf("camelhead (%d triangles): k = %.10f, bound %.10f, %d iterations, %.2f s %s\n", p.num_elements(),
+              r.distortion.maxCoeff(), r.lower_bound, r.iterations, r.time_s, r.message.c_str());
+}
+
+}  // namespace
