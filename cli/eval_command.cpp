@@ -26,7 +26,9 @@ int run_eval(const EvalArgs& a) {
       throw InputError(a.rest + ": no map to evaluate: give a MAPPED mesh, or an OBJ with texture coordinates (vt)");
     mapped = rest;
   } else {
-    mapped = read_mesh(a.mapped, &warnings);
+    MeshReadOptions image;
+    image.check_geometry = false;  // the map may flip or collapse elements: that is what eval reports
+    mapped = read_mesh(a.mapped, &warnings, image);
   }
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
   const bool parametrization = mapped.has_uv() || (rest.element_type() == ElementType::Triangle && !rest.is_planar() &&

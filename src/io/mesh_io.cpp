@@ -29,7 +29,8 @@ constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 }  // namespace
 
-Mesh read_mesh_from_string(const std::string& text, const std::string& name, std::vector<std::string>* warnings) {
+Mesh read_mesh_from_string(const std::string& text, const std::string& name, std::vector<std::string>* warnings,
+                           const MeshReadOptions& options) {
   const std::string ext = extension_of(name);
   Mesh mesh;
   if (ext == ".obj")
@@ -42,17 +43,17 @@ Mesh read_mesh_from_string(const std::string& text, const std::string& name, std
     throw InputError(located(name, 0, "reading .ply is not supported (use .obj, .off or .mesh)"));
   else
     unknown_format(name, ext, ".obj, .off or .mesh");
-  validate_mesh(mesh, name, warnings);
+  validate_mesh(mesh, name, warnings, options.check_geometry);
   return mesh;
 }
 
-Mesh read_mesh(const std::string& path, std::vector<std::string>* warnings) {
+Mesh read_mesh(const std::string& path, std::vector<std::string>* warnings, const MeshReadOptions& options) {
   const std::string ext = extension_of(path);
   if (ext != ".obj" && ext != ".off" && ext != ".mesh") {
     if (ext == ".ply") throw InputError(located(path, 0, "reading .ply is not supported (use .obj, .off or .mesh)"));
     unknown_format(path, ext, ".obj, .off or .mesh");
   }
-  return read_mesh_from_string(io_detail::read_text_file(path), path, warnings);
+  return read_mesh_from_string(io_detail::read_text_file(path), path, warnings, options);
 }
 
 void write_mesh(const std::string& path, const Mesh& mesh, const MeshWriteOptions& options) {

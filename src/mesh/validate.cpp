@@ -25,17 +25,17 @@ class Validator {
   Validator(const Mesh& mesh, const std::string& source)
       : mesh_(mesh), source_(source), tets_(mesh.F.cols() == 4), noun_(tets_ ? "tet" : "face") {}
 
-  void run(std::vector<std::string>* warnings) {
+  void run(std::vector<std::string>* warnings, bool check_geometry) {
     check_shape();
     check_finite();
     check_indices();
-    check_measures();
+    if (check_geometry) check_measures();
     check_duplicates();
     if (tets_)
       check_tet_faces();
     else
       check_triangle_edges();
-    check_signs();
+    if (check_geometry) check_signs();
     if (warnings) warn_unreferenced(*warnings);
   }
 
@@ -279,8 +279,9 @@ class Validator {
 
 }  // namespace
 
-void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings) {
-  Validator(mesh, source).run(warnings);
+void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings,
+                   bool check_geometry) {
+  Validator(mesh, source).run(warnings, check_geometry);
 }
 
 std::vector<int> unreferenced_vertices(const Mesh& mesh) {

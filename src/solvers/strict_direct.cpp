@@ -44,6 +44,10 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       // A step that stops short still leaves a valid map; keep going only if it is usable.
       if (r.status != SolveStatus::MaxIterations) break;
     }
+    // The interior-point map meets the fixed bounds only to the solver's tolerance; widen
+    // them to what it reached so that it stays an exact witness of feasibility.
+    for (int e = 0; e < p.num_elements(); ++e)
+      if (bounds(e) >= 0) bounds(e) = std::max(bounds(e), r.distortion(e));
     // k = the optimum of (1) over the elements still free.
     k = 0;
     for (int e = 0; e < p.num_elements(); ++e)
@@ -52,7 +56,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     for (int e = 0; e < p.num_elements(); ++e)
       if (movable[e] && bounds(e) < 0 && r.distortion(e) >= k - options.delta_k) {
         // Fix at the value reached (it is feasible for the map in hand), never below it.
-        bounds(e) = std::max(k, r.distortion(e)) * (1 + 1e-9);
+        bounds(e) = std::max(k, r.distortion(e));
         ++fixed_now;
       }
     fixed_total += fixed_now;

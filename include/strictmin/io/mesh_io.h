@@ -17,12 +17,18 @@
 
 namespace strictmin {
 
+struct MeshReadOptions {
+  // false: skip the zero-area/volume and orientation checks (the image of a map may flip).
+  bool check_geometry = true;
+};
+
 // Throws InputError naming the file, the line and the reason.
-Mesh read_mesh(const std::string& path, std::vector<std::string>* warnings = nullptr);
+Mesh read_mesh(const std::string& path, std::vector<std::string>* warnings = nullptr,
+               const MeshReadOptions& options = {});
 
 // Parse from text already in memory (name is used in messages, its extension picks the format).
 Mesh read_mesh_from_string(const std::string& text, const std::string& name,
-                           std::vector<std::string>* warnings = nullptr);
+                           std::vector<std::string>* warnings = nullptr, const MeshReadOptions& options = {});
 
 struct MeshWriteOptions {
   // Per-element value written as PLY `quality` (and as a comment-free extra in no other

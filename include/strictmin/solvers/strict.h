@@ -41,7 +41,9 @@ struct DirectOptions {
 };
 
 struct ExactOptions {
-  double tolerance = 1e-6;  // an element is lowered when it ends below k - tolerance
+  // An element is a candidate when within tolerance of the level, lowered when it ends
+  // below k - tolerance (see strict_exact.cpp for why not smaller).
+  double tolerance = 1e-3;
   int max_elements = 3000;  // refuse larger meshes (see docs/strict.md)
   LinfOptions linf;
   std::function<void(const StrictStep&)> progress;
