@@ -7,6 +7,7 @@
 //
 // is a weighted smallest-enclosing-ball problem: LP-type, at most d+1 active elements.
 #include <Eigen/Core>
+#include <array>
 
 namespace strictmin {
 
@@ -22,13 +23,27 @@ struct RingSolution {
   Eigen::Matrix<double, d, 1> q;
   double value = 0;  // max_T D_T(q)^2 at the optimum (squared distortion)
   int active = 0;    // number of elements attaining it (1..d+1)
+  std::array<int, d + 1> support{};  // the first `active` entries: indices of those terms
 };
 
-// Exact minimizer (to rounding) for count >= 1 terms.
+// Exact minimizer (to rounding) for count >= 1 terms (a_T > 0, b_T >= 0): combinatorial
+// pivoting over support sets of at most d+1 terms with closed-form support points
+// (one_ring.cpp). The returned q is a KKT point: its support terms agree to 1e-13
+// (relative; Newton-polished to ~1e-15 where possible) and q lies in the convex hull of
+// their centres. value is the objective at q: within 1e-13 relative of the optimum, plus
+// the rounding of coordinates (eps |q|) far from the origin.
 template <int d>
 RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int count);
 
+// The same, starting from a guess of the support set (term indices, e.g. the support of the
+// previous solve on the same vertex): fewer pivots when the guess is right. Invalid
+// guesses are ignored; the answer does not depend on the guess (up to rounding).
+template <int d>
+RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int count, const int* guess, int guess_size);
+
 extern template RingSolution<2> solve_one_ring<2>(const RingTerm<2>*, int);
 extern template RingSolution<3> solve_one_ring<3>(const RingTerm<3>*, int);
+extern template RingSolution<2> solve_one_ring<2>(const RingTerm<2>*, int, const int*, int);
+extern template RingSolution<3> solve_one_ring<3>(const RingTerm<3>*, int, const int*, int);
 
 }  // namespace strictmin

@@ -1,0 +1,215 @@
+// One relaxation sweep (paper Algorithm 3, Section 5.3; NOTES.md "Proposition 3 and the
+// 1-ring problem"): each free vertex v solves min_q max_{T in ring(v)} ||J_T - R_T||^2 with
+// every other vertex fixed and moves only if that lowers its ring's maximum; vertices of
+// one colour share no element, so they move in parallel.
+#include "relax_sweep.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/solvers/one_ring.h"
+
+namespace strictmin::relax_detail {
+
+// A move is accepted only if it lowers the ring's maximum squared distortion by this much
+// (relative): a strict decrease that rounding cannot fake. Below it, the vertex stays.
+constexpr double kAcceptRelative = 1e-13;
+constexpr uint32_t kNoGuess = 0xffffffffu;
+
+inline uint32_t pack_entry(int element, int corner, bool last) {
+  return static_cast<uint32_t>(element) << 3 | static_cast<uint32_t>(corner) << 1 | (last ? 1u : 0u);
+}
+
+template <int d>
+using Vec = Eigen::Matrix<double, d, 1>;
+template <int d>
+using Mat = Eigen::Matrix<double, d, d>;
+
+template <int d>
+void compute_deviations(const SweepData& s, const Problem& p, const Eigen::MatrixXd& Xm, Deviations& dev) {
+  const int E = static_cast<int>(s.corners.size()) / (d + 1);
+  dev.M.resize(static_cast<size_t>(E) * d * d);
+  const double* X = Xm.data();
+  const Eigen::Index xrows = Xm.rows(), rrows = p.targets.rows();
+  const double* R = p.targets.data();
+  tbb::parallel_for(tbb::blocked_range<int>(0, E, 2048), [&](const tbb::blocked_range<int>& range) {
+    for (int e = range.begin(); e != range.end(); ++e) {
+      Eigen::Map<Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
+      for (int col = 0; col < d; ++col)
+        for (int r = 0; r < d; ++r) M(r, col) = -R[col * rrows + e * d + r];
+      for (int i = 0; i < d + 1; ++i) {
+        const Eigen::Map<const Vec<d>> g(&s.gradients[(e * (d + 1) + i) * (d + 1)]);
+        const int v = s.corners[e * (d + 1) + i];
+        for (int r = 0; r < d; ++r) M.row(r) += X[r * xrows + v] * g.transpose();
+      }
+    }
+  });
+  dev.age = 0;
+}
+
+template <int d>
+struct Scratch {
+  std::vector<RingTerm<d>> terms;
+  std::vector<double> current;  // D_T^2 before the move
+};
+
+struct Accumulator {
+  double move = 0;  // largest move
+  double top = 0;   // largest D_T^2 after the sweep over the elements seen so far
+};
+
+template <int d>
+double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Deviations& dev, double* max_distortion) {
+  if (dev.age < 0) compute_deviations<d>(s, p, Xm, dev);
+  double* X = Xm.data();
+  const Eigen::Index xrows = Xm.rows();
+
+  tbb::enumerable_thread_specific<Scratch<d>> scratch([&] {
+    Scratch<d> sc;
+    sc.terms.resize(s.max_ring);
+    sc.current.resize(s.max_ring);
+    return sc;
+  });
+
+  Accumulator total;
+  for (int e : s.closed)
+    total.top = std::max(total.top, Eigen::Map<const Mat<d>>(&dev.M[static_cast<size_t>(e) * d * d]).squaredNorm());
+
+  const auto body = [&](const tbb::blocked_range<int>& range, Accumulator acc) {
+    Scratch<d>& sc = scratch.local();
+    for (int idx = range.begin(); idx != range.end(); ++idx) {
+      const int v = s.colouring.order[idx];
+      const int first = s.ring_start[idx], n = s.ring_start[idx + 1] - first;
+      // Ring terms in displacement coordinates q = X_v(new) - X_v: J_T - R_T = M + q g^T
+      // with M the current deviation, so D_T^2 = a ||q - c||^2 + b (NOTES.md).
+      double current = 0;
+      for (int k = 0; k < n; ++k) {
+        const uint32_t entry = s.ring[first + k];
+        const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
+        const Eigen::Map<const Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
+        const double* G = &s.gradients[(e * (d + 1) + j) * (d + 1)];
+        const Eigen::Map<const Vec<d>> g(G);
+        const double inv_a = G[d];
+        const Vec<d> Mg = M * g;
+        RingTerm<d>& t = sc.terms[k];
+        t.a = g.squaredNorm();
+        t.centre = -inv_a * Mg;
+        // b = ||M (I - g g^T / a)||^2: M on the complement of g, >= 0 without cancellation.
+        t.b = (M - (inv_a * Mg) * g.transpose()).squaredNorm();
+        sc.current[k] = M.squaredNorm();
+        current = std::max(current, sc.current[k]);
+      }
+      bool moved = false;
+      Vec<d> q = Vec<d>::Zero();
+      if (current > 0) {
+        int guess[d + 1], guess_size = 0;
+        const uint32_t packed = s.guesses[idx].load(std::memory_order_relaxed);
+        for (int i = 0; i < d + 1 && ((packed >> (8 * i)) & 0xff) != 0xff; ++i)
+          guess[guess_size++] = static_cast<int>((packed >> (8 * i)) & 0xff);
+        const RingSolution<d> sol = solve_one_ring<d>(sc.terms.data(), n, guess, guess_size);
+        uint32_t support = kNoGuess;
+        if (n < 0xff)
+          for (int i = 0; i < sol.active; ++i)
+            support = (support & ~(0xffu << (8 * i))) | static_cast<uint32_t>(sol.support[i]) << (8 * i);
+        s.guesses[idx].store(support, std::memory_order_relaxed);
+        if (sol.value < current * (1 - kAcceptRelative)) {
+          moved = true;
+          q = sol.q;
+          for (int r = 0; r < d; ++r) X[r * xrows + v] += q(r);
+          acc.move = std::max(acc.move, q.norm());
+          for (int k = 0; k < n; ++k) {  // the ring's deviations follow the move
+            const uint32_t entry = s.ring[first + k];
+            const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
+            Eigen::Map<Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
+            M.noalias() += q * Eigen::Map<const Vec<d>>(&s.gradients[(e * (d + 1) + j) * (d + 1)]).transpose();
+          }
+        }
+      }
+      for (int k = 0; k < n; ++k) {
+        if (!(s.ring[first + k] & 1u)) continue;
+        const RingTerm<d>& t = sc.terms[k];
+        acc.top = std::max(acc.top, moved ? t.a * (q - t.centre).squaredNorm() + t.b : sc.current[k]);
+      }
+    }
+    return acc;
+  };
+  const auto join = [](Accumulator x, const Accumulator& y) {
+    x.move = std::max(x.move, y.move);
+    x.top = std::max(x.top, y.top);
+    return x;
+  };
+  for (int c = 0; c < s.colouring.num_colours; ++c) {
+    const tbb::blocked_range<int> range(s.colouring.offsets[c], s.colouring.offsets[c + 1], 128);
+    total = join(total, tbb::parallel_reduce(range, Accumulator{}, body, join));
+  }
+  ++dev.age;
+  if (max_distortion) *max_distortion = std::sqrt(total.top);
+  return total.move;
+}
+
+double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double* max_distortion) {
+  return s.dim == 2 ? sweep_dim<2>(s, p, X, dev, max_distortion) : sweep_dim<3>(s, p, X, dev, max_distortion);
+}
+
+// Packs the problem's elements and gradients, colours the free vertices and lists their
+// rings in sweep order.
+void build(const Problem& p, SweepData& s) {
+  const int d = p.image_dim;
+  if (d != p.domain_dim || (d != 2 && d != 3))
+    throw InputError("relax: needs image and domain dimension both 2 or both 3, got " + std::to_string(d) +
+                     " and " + std::to_string(p.domain_dim));
+  if (p.has_equalities()) throw InputError("relax: linear equality constraints (seams) are not supported");
+  const int E = p.num_elements(), c = d + 1;
+  if (p.elements.cols() != c || p.gradients.rows() != static_cast<Eigen::Index>(E) * c ||
+      p.targets.rows() != static_cast<Eigen::Index>(E) * d || static_cast<int>(p.fixed.size()) != p.num_vertices)
+    throw InputError("relax: the problem's arrays do not match its element count and dimensions");
+
+  s.dim = d;
+  s.colouring = colour_free_vertices(p.elements, p.fixed);
+  s.corners.resize(static_cast<size_t>(E) * c);
+  s.gradients.resize(static_cast<size_t>(E) * c * (d + 1));
+  std::vector<int> last_colour(E, -1);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) {
+      const int v = p.elements(e, j);
+      s.corners[e * c + j] = v;
+      double* G = &s.gradients[(e * c + j) * (d + 1)];
+      for (int k = 0; k < d; ++k) G[k] = p.gradients(e * c + j, k);
+      G[d] = 1.0 / p.gradients.row(e * c + j).squaredNorm();
+      last_colour[e] = std::max(last_colour[e], s.colouring.colour[v]);
+    }
+  for (int e = 0; e < E; ++e)
+    if (last_colour[e] < 0) s.closed.push_back(e);
+
+  // Rings (element, corner) of the coloured vertices, in sweep order.
+  const int nv = p.num_vertices;
+  std::vector<int> start(nv + 1, 0);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) ++start[p.elements(e, j) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> incident(start[nv]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) {
+      const int v = p.elements(e, j);
+      incident[fill[v]++] = pack_entry(e, j, s.colouring.colour[v] >= 0 && s.colouring.colour[v] == last_colour[e]);
+    }
+  s.ring_start.reserve(s.colouring.order.size() + 1);
+  s.ring_start.push_back(0);
+  for (int v : s.colouring.order) {
+    s.ring.insert(s.ring.end(), incident.begin() + start[v], incident.begin() + start[v + 1]);
+    s.ring_start.push_back(static_cast<int>(s.ring.size()));
+    s.max_ring = std::max(s.max_ring, start[v + 1] - start[v]);
+  }
+  s.guesses = std::make_unique<std::atomic<uint32_t>[]>(s.colouring.order.size());
+  for (size_t i = 0; i < s.colouring.order.size(); ++i) s.guesses[i].store(kNoGuess, std::memory_order_relaxed);
+}
+
+}  // namespace strictmin::relax_detail
