@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"
@@ -17,19 +18,7 @@ using namespace strictmin;
 namespace {
 
 // A square grid with 2 * n * n triangles, boundary fixed, the centre moved sideways.
-Problem grid_problem(int n) {
-  const Mesh mesh = make_grid(n, n);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> handles;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v);
-    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) handles.push_back({v, x});
-  }
-  const int centre = (n / 2) * (n + 1) + n / 2;
-  handles.push_back({centre, Eigen::Vector2d(0.6, 0.5)});
-  p.fix(handles);
-  return p;
-}
+Problem grid_problem(int n) { return example_problem(make_square_example(n, 0.1)); }
 
 Problem file_problem(const std::string& name) {
   const Mesh mesh = read_mesh(std::string(STRICTMIN_SHARED_DATA) + "/" + name);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"
@@ -27,19 +28,7 @@ using namespace strictmin;
 
 namespace {
 
-Problem square_problem(int cells) {
-  const Mesh mesh = make_grid(cells, cells);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> handles;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const int i = v % (cells + 1), j = v / (cells + 1);
-    if (i == 0 || j == 0 || i == cells || j == cells) handles.push_back({v, mesh.V.row(v).transpose()});
-  }
-  const int centre = (cells / 2) * (cells + 1) + cells / 2;
-  handles.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + 0.2, mesh.V(centre, 1))});
-  p.fix(handles);
-  return p;
-}
+Problem square_problem(int cells) { return example_problem(make_square_example(cells, 0.2)); }
 
 Problem bar_problem(int n) {
   const int nx = 4 * n, ny = n;

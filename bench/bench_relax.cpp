@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/one_ring.h"
@@ -21,19 +22,7 @@ using namespace strictmin;
 namespace {
 
 // A square grid with 2 n^2 triangles, boundary fixed, the centre moved by 0.15 in x.
-Problem grid_problem(int n) {
-  const Mesh mesh = make_grid(n, n);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> handles;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v);
-    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) handles.push_back({v, x});
-  }
-  const int centre = (n / 2) * (n + 1) + n / 2;
-  handles.push_back({centre, Eigen::Vector2d(mesh.V.row(centre)) + Eigen::Vector2d(0.15, 0.0)});
-  p.fix(handles);
-  return p;
-}
+Problem grid_problem(int n) { return example_problem(make_square_example(n, 0.15)); }
 
 struct Case {
   Problem problem;

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/irls.h"
 #include "strictmin/solvers/l2.h"
@@ -14,18 +15,7 @@ using namespace strictmin;
 namespace {
 
 // The paper's Figure 2: boundary of a 20 x 20 grid fixed, centre moved sideways by 0.15.
-Problem square_problem(int n = 20) {
-  const Mesh mesh = make_grid(n, n);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v);
-    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) h.push_back({v, x});
-  }
-  h.push_back({(n / 2) * (n + 1) + n / 2, Eigen::Vector2d(0.65, 0.5)});
-  p.fix(h);
-  return p;
-}
+Problem square_problem(int n = 20) { return example_problem(make_square_example(n)); }
 
 double lp_energy(const Problem& p, const Eigen::MatrixXd& X, double q) {
   double f = 0;

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <vector>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"
@@ -23,19 +24,7 @@ using namespace strictmin;
 namespace {
 
 // The paper's Figure 2: 20 x 20 grid, boundary fixed, centre vertex moved by +0.15 in x.
-Problem figure2_problem() {
-  const Mesh mesh = make_grid(20, 20);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> handles;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v).transpose();
-    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) handles.push_back({v, x});
-  }
-  const int centre = 10 * 21 + 10;
-  handles.push_back({centre, Eigen::Vector2d(0.65, 0.5)});
-  p.fix(handles);
-  return p;
-}
+Problem figure2_problem() { return example_problem(make_example("square")); }
 
 // A 2 x 1 x 1 tet bar (6 x 3 x 3 cubes): the x = 0 end fixed, the x = 2 end turned by 40
 // degrees about the bar's axis and pulled 0.2 along it.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "strictmin/tasks/examples.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/report/strict_order.h"
@@ -85,19 +86,7 @@ TEST(Exact, MatchesBruteForceOnIndependentRings) {
 }
 
 // The paper's Figure 2 at a small size: boundary fixed, centre moved sideways.
-Problem small_square() {
-  const int n = 6;
-  const Mesh mesh = make_grid(n, n);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v);
-    if (x.minCoeff() == 0.0 || x.maxCoeff() == 1.0) h.push_back({v, x});
-  }
-  h.push_back({(n / 2) * (n + 1) + n / 2, Eigen::Vector2d(0.65, 0.5)});
-  p.fix(h);
-  return p;
-}
+Problem small_square() { return example_problem(make_square_example(6)); }
 
 TEST(Direct, AgreesWithExact) {
   const Problem p = small_square();

@@ -11,18 +11,6 @@ namespace {
 
 Handle handle_at(int v, const Eigen::VectorXd& p) { return Handle{v, p}; }
 
-Example square() {
-  Example ex{"square", make_grid(20, 20), {}};
-  const int n = 21;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      if (i == 0 || j == 0 || i == n - 1 || j == n - 1)
-        ex.handles.push_back(handle_at(j * n + i, ex.mesh.V.row(j * n + i).transpose()));
-  const int centre = 10 * n + 10;
-  ex.handles.push_back(handle_at(centre, Eigen::Vector2d(0.5 + 0.15, 0.5)));
-  return ex;
-}
-
 Example bar() {
   const int nx = 64, ny = 8;
   Example ex{"bar", make_grid(nx, ny, 8.0, 1.0), {}};
@@ -56,10 +44,29 @@ Example tetbar() {
 
 }  // namespace
 
+Example make_square_example(int cells, double shift) {
+  if (cells < 2) throw InputError("the square example needs at least 2 cells (got " + std::to_string(cells) + ")");
+  Example ex{"square", make_grid(cells, cells), {}};
+  const int n = cells + 1;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if (i == 0 || j == 0 || i == n - 1 || j == n - 1)
+        ex.handles.push_back(handle_at(j * n + i, ex.mesh.V.row(j * n + i).transpose()));
+  const int centre = (cells / 2) * n + cells / 2;
+  ex.handles.push_back(handle_at(centre, ex.mesh.V.row(centre).transpose() + Eigen::Vector2d(shift, 0.0)));
+  return ex;
+}
+
+Problem example_problem(const Example& example) {
+  Problem p = make_problem(example.mesh);
+  p.fix(example.handles);
+  return p;
+}
+
 std::vector<std::string> example_names() { return {"square", "bar", "tetbar"}; }
 
 Example make_example(const std::string& name) {
-  if (name == "square") return square();
+  if (name == "square") return make_square_example(20, 0.15);
   if (name == "bar") return bar();
   if (name == "tetbar") return tetbar();
   throw InputError("unknown example '" + name + "' (known: square, bar, tetbar)");

@@ -11,6 +11,7 @@
 
 #include "strictmin/mesh/handle.h"
 #include "strictmin/mesh/mesh.h"
+#include "strictmin/problem/problem.h"
 
 namespace strictmin {
 
@@ -23,5 +24,14 @@ struct Example {
 std::vector<std::string> example_names();
 // Throws InputError for an unknown name (listing the known ones).
 Example make_example(const std::string& name);
+
+// The paper's Figure 2 at any size: a cells x cells grid of the unit square (2 cells^2
+// triangles), boundary fixed, the centre vertex (the middle one for odd cells: the one just
+// below-left of the middle) moved by `shift` in x.
+// make_example("square") is make_square_example(20, 0.15).
+Example make_square_example(int cells, double shift = 0.15);
+
+// The example's Problem: make_problem(mesh) with its handles fixed.
+Problem example_problem(const Example& example);
 
 }  // namespace strictmin
