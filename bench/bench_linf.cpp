@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -55,10 +56,18 @@ Problem bar_problem(int n) {
   return p;
 }
 
+// STRICTMIN_LINF_VERBOSE=1|2 prints the solver's per-iteration lines and phase timers.
+LinfOptions bench_options() {
+  LinfOptions o;
+  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
+  return o;
+}
+
 void run(benchmark::State& state, const Problem& p) {
   Result r;
+  const LinfOptions options = bench_options();
   for (auto _ : state) {
-    r = solve_linf(p);
+    r = solve_linf(p, options);
     benchmark::DoNotOptimize(r.positions.data());
   }
   const double k = r.distortion.maxCoeff();

@@ -78,6 +78,25 @@ Eigen::VectorXd cone_identity(const ConeProgram& p, double value) {
   return e;
 }
 
+void cone_centrality_correction(const ConeProgram& p, const Eigen::VectorXd& v, double lo, double hi, Eigen::VectorXd& t) {
+  t.resize(p.cone_size());
+  auto move = [&](double e) {
+    if (e < lo) return lo - e;
+    if (e > hi) return std::max(hi - e, -hi);
+    return 0.0;
+  };
+  for_each_cone(p, [&](int, Eigen::Index o, int d) {
+    const double* vv = v.data() + o;
+    double* out = t.data() + o;
+    const double r = tail_norm(vv, d);
+    const double tp = move(vv[0] + r), tm = move(vv[0] - r);
+    // t = tp f+ + tm f-, f+- = (1, +-v1/||v1||) / 2.
+    out[0] = 0.5 * (tp + tm);
+    const double f = r > 0 ? 0.5 * (tp - tm) / r : 0.0;
+    for (int j = 1; j < d; ++j) out[j] = f * vv[j];
+  });
+}
+
 double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u) {
   return min_over_cones(p, [&](Eigen::Index o, int d) { return max_step(l.data() + o, u.data() + o, d); });
 }

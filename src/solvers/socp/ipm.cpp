@@ -67,15 +67,25 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     IpmOutcome& out;
     const IpmSettings& settings;
     std::function<double()> elapsed;
+    const NormalEquations* kkt = nullptr;
     ~Finish() {
       out.total_s = elapsed();
-      if (settings.verbose)
-        std::fprintf(stderr, "ipm: %d iterations, %.3fs (analyze %.3f, factor %.3f, solve %.3f, monitor %.3f)\n",
-                     out.iterations, out.total_s, out.analyze_s, out.factor_s, out.solve_s, out.monitor_s);
+      if (!settings.verbose) return;
+      std::fprintf(stderr, "ipm: %d iterations, %.3fs (analyze %.3f, factor %.3f, solve %.3f, monitor %.3f)\n",
+                   out.iterations, out.total_s, out.analyze_s, out.factor_s, out.solve_s, out.monitor_s);
+      if (!kkt) return;
+      const KktTimers& t = kkt->timers();
+      std::fprintf(stderr,
+                   "ipm: wall/cpu s: analyze %.3f/%.3f assemble %.3f/%.3f factorize %.3f/%.3f (%d) "
+                   "border %.3f/%.3f solves %.3f/%.3f (%d) products %.3f/%.3f (%d)\n",
+                   t.analyze_wall, t.analyze_cpu, t.assemble_wall, t.assemble_cpu, t.factorize_wall, t.factorize_cpu,
+                   t.factorizations, t.border_wall, t.border_cpu, t.solve_wall, t.solve_cpu, t.solves, t.apply_wall,
+                   t.apply_cpu, t.applies);
     }
   } finish{out, settings, elapsed};
   auto tp = clock();
   NormalEquations kkt(p, settings);
+  finish.kkt = &kkt;
   out.analyze_s = since(tp);
   const ResidualScales scales = residual_scales(p);
   const double nu = p.num_cones();
@@ -93,6 +103,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
   }
   Scaling sc;
   Eigen::VectorXd ll, corr, rc, qa, qc, s_new, z_new;
+  Eigen::VectorXd st_trial, zt_trial, vprod, tcorr, qg, zero_rs, zero_rdx, zero_req;  // correctors
   int small_steps = 0, bad_directions = 0;
   for (int it = 1; it <= settings.max_iterations; ++it) {
     out.iterations = it;
@@ -110,15 +121,15 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
       out.message = "the normal equations could not be factorised (not positive definite)";
       return out;
     }
-    auto direction = [&](const Eigen::VectorXd& q, Direction& d) {
+    auto direction = [&](const Eigen::VectorXd& q, Direction& d, double tolerance) {
       const auto ts = clock();
-      kkt.solve_newton(q, res.rs, res.rdx, res.rdk, res.req, d);
+      kkt.solve_newton(q, res.rs, res.rdx, res.rdk, res.req, d, tolerance);
       out.solve_s += since(ts);
     };
     // Predictor (affine scaling direction).
     Direction aff;
     qa = -sc.lambda;
-    direction(qa, aff);
+    direction(qa, aff, settings.predictor_tolerance);
     const double amax = std::min(cone_max_step(p, sc.lambda, aff.dst), cone_max_step(p, sc.lambda, aff.dzt));
     const double alpha_a = std::min(1.0, amax);
     const double ratio = 1.0 - alpha_a + alpha_a * alpha_a * aff.dst.dot(aff.dzt) / sc.lambda.squaredNorm();
@@ -129,9 +140,51 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     rc = -ll - corr + cone_identity(p, sigma * mu);
     cone_arrow_solve(p, sc.lambda, rc, qc);
     Direction dir;
-    direction(qc, dir);
-    const double cmax = std::min(cone_max_step(p, sc.lambda, dir.dst), cone_max_step(p, sc.lambda, dir.dzt));
-    double alpha = std::min(1.0, settings.step_fraction * cmax);
+    direction(qc, dir, 0.0);
+    auto max_step_of = [&](const Direction& d) {
+      return std::min(cone_max_step(p, sc.lambda, d.dst), cone_max_step(p, sc.lambda, d.dzt));
+    };
+    double cmax = max_step_of(dir);
+    // Gondzio's centrality correctors: aim at a longer step alpha~; where the complementarity
+    // products of the point there, (lambda + alpha~ ds~) o (lambda + alpha~ dz~), leave
+    // [0.1, 10] sigma mu, correct them (lambda o (ds~ + dz~) = t, no residuals: the same
+    // factorisation, one more solve) and keep the sum if the step gets longer.
+    int correctors = 0;
+    for (int kc = 0; kc < settings.max_correctors && cmax < settings.corrector_max_step; ++kc) {
+      const double target = std::min(1.0, cmax + settings.corrector_step_increase);
+      st_trial = sc.lambda + target * dir.dst;
+      zt_trial = sc.lambda + target * dir.dzt;
+      cone_product(p, st_trial, zt_trial, vprod);
+      const double mu_target = std::max(sigma, 1e-3) * mu;  // never aim at the boundary
+      cone_centrality_correction(p, vprod, 0.1 * mu_target, 10.0 * mu_target, tcorr);
+      cone_arrow_solve(p, sc.lambda, tcorr, qg);
+      if (zero_rs.size() != res.rs.size()) zero_rs.setZero(res.rs.size());
+      if (zero_rdx.size() != res.rdx.size()) zero_rdx.setZero(res.rdx.size());
+      if (zero_req.size() != res.req.size()) zero_req.setZero(res.req.size());
+      Direction cd;
+      const auto ts = clock();
+      kkt.solve_newton(qg, zero_rs, zero_rdx, 0.0, zero_req, cd, settings.corrector_tolerance);
+      out.solve_s += since(ts);
+      Direction trial;
+      trial.dx = dir.dx + cd.dx;
+      trial.dk = dir.dk + cd.dk;
+      trial.dy = dir.dy + cd.dy;
+      trial.ds = dir.ds + cd.ds;
+      trial.dz = dir.dz + cd.dz;
+      trial.dst = dir.dst + cd.dst;
+      trial.dzt = dir.dzt + cd.dzt;
+      trial.residual = std::max(dir.residual, cd.residual);
+      trial.refinement = dir.refinement + cd.refinement;
+      const double tmax = max_step_of(trial);
+      if (!(tmax >= cmax + settings.corrector_acceptance * (target - cmax)) || !trial.dx.allFinite()) break;
+      dir = std::move(trial);
+      cmax = tmax;
+      ++correctors;
+    }
+    // A nearly pure Newton step (little centring needed) can go closer to the boundary.
+    const double fraction =
+        sigma < settings.fast_sigma ? std::max(settings.step_fraction, settings.fast_step_fraction) : settings.step_fraction;
+    double alpha = std::min(1.0, fraction * cmax);
     if (!std::isfinite(alpha) || !dir.dx.allFinite() || !std::isfinite(dir.dk)) {
       out.status = IpmStatus::NumericalError;
       out.message = "the Newton direction is not finite";
@@ -161,9 +214,9 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     if (settings.verbose)
       std::fprintf(stderr,
                    "ipm %3d pobj %+.12e dobj %+.12e gap %.2e pres %.2e dres %.2e mu %.2e step %.3f sigma %.2e "
-                   "ref %d kkt %.1e t %.3fs\n",
+                   "ref %d kkt %.1e t %.3fs (affine step %.3f, max step %.3f, %d correctors)\n",
                    it, info.pobj, info.dobj, info.gap, info.pres, info.dres, info.mu, info.step, info.sigma,
-                   info.refinement, info.kkt_residual, info.time_s);
+                   info.refinement, info.kkt_residual, info.time_s, alpha_a, cmax, correctors);
     tp = clock();
     const bool stop = monitor(st, res, info);
     out.monitor_s += since(tp);

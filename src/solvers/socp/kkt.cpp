@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -19,10 +20,37 @@ int pair_index(int l1, int l2) { return l1 * (l1 + 1) / 2 + l2; }  // l1 >= l2
 
 double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
+double process_cpu() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+// Adds the wall and CPU time of its scope to two counters.
+class PhaseTimer {
+ public:
+  PhaseTimer(double& wall, double& cpu)
+      : wall_(wall), cpu_(cpu), w0_(std::chrono::steady_clock::now()), c0_(process_cpu()) {}
+  ~PhaseTimer() { stop(); }
+  void stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    wall_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0_).count();
+    cpu_ += process_cpu() - c0_;
+  }
+
+ private:
+  double &wall_, &cpu_;
+  std::chrono::steady_clock::time_point w0_;
+  double c0_;
+  bool stopped_ = false;
+};
+
 }  // namespace
 
 NormalEquations::NormalEquations(const ConeProgram& program, const IpmSettings& settings)
     : p_(program), settings_(settings) {
+  PhaseTimer timer(timers_.analyze_wall, timers_.analyze_cpu);
   build_pattern();
 }
 
@@ -57,7 +85,9 @@ void NormalEquations::build_pattern() {
     for (int i = 0; i < F; ++i)
       for (int r = 0; r < n; ++r) perm_[order[i] * n + r] = i * n + r;
   }
-  // Lower-triangle pattern (in the permuted numbering): element blocks, the diagonal, A^T A.
+  // Upper-triangle pattern (in the permuted numbering): element blocks, the diagonal, A^T A.
+  // Upper, because CHOLMOD's supernodal factorisation reads the upper triangle: a lower one
+  // would be transposed on every factorisation.
   std::vector<Eigen::Triplet<double>> pattern;
   pattern.reserve(static_cast<size_t>(E) * npairs_ + N);
   std::vector<int> dof(L);
@@ -73,20 +103,20 @@ void NormalEquations::build_pattern() {
     for (int l1 = 0; l1 < L; ++l1)
       for (int l2 = 0; l2 <= l1; ++l2)
         if (dof[l1] >= 0 && dof[l2] >= 0)
-          pattern.emplace_back(std::max(dof[l1], dof[l2]), std::min(dof[l1], dof[l2]), 1.0);
+          pattern.emplace_back(std::min(dof[l1], dof[l2]), std::max(dof[l1], dof[l2]), 1.0);
   }
   for (int d = 0; d < N; ++d) pattern.emplace_back(d, d, 1.0);
   Eigen::SparseMatrix<double> ata;
-  auto lower_of = [&](Eigen::Index r, Eigen::Index col) {
+  auto upper_of = [&](Eigen::Index r, Eigen::Index col) {
     const int a = perm_[r], b = perm_[col];
-    return std::make_pair(std::max(a, b), std::min(a, b));
+    return std::make_pair(std::min(a, b), std::max(a, b));
   };
   if (p_.num_eq() > 0) {
     at_ = p_.A.transpose();
     ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
     for (int col = 0; col < ata.outerSize(); ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it) {
-        const auto [r, cc] = lower_of(it.row(), it.col());
+        const auto [r, cc] = upper_of(it.row(), it.col());
         pattern.emplace_back(r, cc, 1.0);
       }
   }
@@ -113,7 +143,7 @@ void NormalEquations::build_pattern() {
     for (int l1 = 0; l1 < L; ++l1)
       for (int l2 = 0; l2 <= l1; ++l2) {
         if (dof[l1] < 0 || dof[l2] < 0) continue;
-        const int nz = find(std::max(dof[l1], dof[l2]), std::min(dof[l1], dof[l2]));
+        const int nz = find(std::min(dof[l1], dof[l2]), std::max(dof[l1], dof[l2]));
         slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)] = nz;
         ++count[nz + 1];
         if (p_.has_quad() && l1 % n == l2 % n) {
@@ -135,7 +165,7 @@ void NormalEquations::build_pattern() {
     for (int col = 0; col < ata.outerSize(); ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it)
         if (it.row() >= it.col()) {
-          const auto [r, cc] = lower_of(it.row(), it.col());
+          const auto [r, cc] = upper_of(it.row(), it.col());
           ata_values_[find(r, cc)] += it.value();
         }
   slot_values_.resize(static_cast<Eigen::Index>(E) * npairs_);
@@ -150,11 +180,17 @@ void NormalEquations::build_pattern() {
                  static_cast<long>(matrix_.nonZeros()), llt_.cholmod().lnz, llt_.cholmod().fl);
 }
 
+double NormalEquations::factor_nonzeros() const {
+  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().lnz;
+}
+
 double NormalEquations::analyze_flops() const {
-  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>&>(llt_).cholmod().fl;
+  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().fl;
 }
 
 Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
+  PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
+  ++timers_.solves;
   const int N = p_.num_x;
   Eigen::VectorXd bp(N), out(N);
   for (int d = 0; d < N; ++d) bp[perm_[d]] = b[d];
@@ -174,6 +210,7 @@ bool NormalEquations::factor(const Scaling& sc) {
   };
   const int N = p_.num_x, n = p_.n, m = p_.m, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
   const bool has_k = p_.has_k;
+  PhaseTimer assemble_timer(timers_.assemble_wall, timers_.assemble_cpu);
   // Element contributions, in parallel.
   hkk_ = tbb::parallel_reduce(
       tbb::blocked_range<int>(0, E, kGrain), 0.0,
@@ -241,6 +278,9 @@ bool NormalEquations::factor(const Scaling& sc) {
   inv_rho_ = p_.num_eq() > 0 ? max_diag_raw / settings_.equality_penalty : 0.0;
   if (p_.num_eq() > 0)
     for (Eigen::Index z = 0; z < matrix_.nonZeros(); ++z) values[z] += inv_rho_ * ata_values_[z];
+  assemble_timer.stop();
+  PhaseTimer factor_timer(timers_.factorize_wall, timers_.factorize_cpu);
+  ++timers_.factorizations;
   // Regularisation relative to each diagonal entry (they span many orders of magnitude near
   // the optimum), with a floor relative to the largest.
   delta_ = settings_.regularization;
@@ -255,7 +295,9 @@ bool NormalEquations::factor(const Scaling& sc) {
     ok = llt_.info() == Eigen::Success;
   }
   const double t_factor = lap();
+  factor_timer.stop();
   if (!ok) return false;
+  PhaseTimer border_timer(timers_.border_wall, timers_.border_cpu);
   if (has_k) {
     hxk_.setZero(N);
     const int free_vertices = N / n;
@@ -312,6 +354,8 @@ void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const
 }
 
 void NormalEquations::apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const {
+  PhaseTimer timer(timers_.apply_wall, timers_.apply_cpu);
+  ++timers_.applies;
   Eigen::VectorXd mv, t1, t2;
   p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
   apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, t1);
@@ -352,7 +396,7 @@ int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold,
   double best_k = k;
   int it = 0, stagnant = 0;
   for (; it < settings_.refinement_steps; ++it) {
-    if (best <= threshold || !(rz > 0) || stagnant >= 3) break;
+    if (best <= threshold || !(rz > 0) || stagnant >= settings_.refinement_patience) break;
     apply_normal(px, pk, apx, apk);
     const double pap = px.dot(apx) + pk * apk;
     if (!(pap > 0)) break;
@@ -362,13 +406,16 @@ int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold,
     rx -= alpha * apx;
     rk -= alpha * apk;
     const double res = std::max(max_abs(rx), std::abs(rk));
+    // Slow progress counts as stagnation too: near the optimum CG on these systems often
+    // crawls for many steps without reaching the threshold, and each step costs a solve.
+    if (res < settings_.refinement_progress * best)
+      stagnant = 0;
+    else
+      ++stagnant;
     if (res < best) {
       best = res;
       best_x = x;
       best_k = k;
-      stagnant = 0;
-    } else {
-      ++stagnant;
     }
     solve_normal(rx, rk, zero_eq, zx, zk, w);
     const double rz_new = rx.dot(zx) + rk * zk;
@@ -406,7 +453,7 @@ void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, co
 }
 
 void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx,
-                                   double rdk, const Eigen::VectorXd& req, Direction& d) {
+                                   double rdk, const Eigen::VectorXd& req, Direction& d, double tolerance) {
   const Scaling& sc = *scaling_;
   Eigen::VectorXd rc, t;
   apply_scaling(p_, sc, ScalingOp::WInv, rs, t);
@@ -417,7 +464,8 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   // The CG residual is the dual residual of the direction: aim at refinement_tolerance
   // relative to this system's right-hand side, but no lower than round-off in dual units.
   const double scale = std::max({max_abs(rc), max_abs(rdx), std::abs(rdk), max_abs(re), 1e-300});
-  const double threshold = std::max(settings_.refinement_tolerance * scale, 1e-14);
+  const double tol = tolerance > 0 ? tolerance : settings_.refinement_tolerance;
+  const double threshold = std::max(tol * scale, 1e-14);
   solve_unreduced(rdx, rdk, rc, re, d.dx, d.dk, w, d.dz, threshold, steps);
   d.refinement = steps;
   // Residuals of the unreduced system.
@@ -443,10 +491,21 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
                    max_abs(ex) / scale, std::abs(ek) / scale, max_abs(ec) / scale, max_abs(ee) / scale, scale, steps);
     return std::max({max_abs(ex), std::abs(ek), max_abs(ec), max_abs(ee)}) / scale;
   };
-  double best = residual();
   // Outer refinement: removes the penalty's effect on the equalities (and any rest).
   const int outer = p_.num_eq() > 0 ? 3 : 0;
-  for (int step = 0; step < outer && best > settings_.refinement_tolerance; ++step) {
+  // The residual check costs four passes over the cones; auxiliary directions (predictor,
+  // correctors: tolerance given) without equalities skip it (their CG residual is reported).
+  if (tolerance > 0 && outer == 0 && settings_.verbose < 2) {
+    d.residual = 0;
+    d.dy.resize(0);
+    p_.apply_m(d.dx, p_.has_k ? d.dk : 0.0, false, mv);
+    d.ds = mv - rs;
+    apply_scaling(p_, sc, ScalingOp::WInv, d.ds, d.dst);
+    apply_scaling(p_, sc, ScalingOp::W, d.dz, d.dzt);
+    return;
+  }
+  double best = residual();
+  for (int step = 0; step < outer && best > tol; ++step) {
     solve_unreduced(ex, ek, ec, ee, cx, ck, cw, cz, threshold, steps);
     d.refinement += steps + 1;
     d.dx += cx;

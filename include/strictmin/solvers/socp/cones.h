@@ -29,6 +29,11 @@ void cone_arrow_solve(const ConeProgram& p, const Eigen::VectorXd& l, const Eige
 Eigen::VectorXd cone_identity(const ConeProgram& p, double value);
 
 // Largest alpha with l + alpha u in every cone (l strictly inside); +inf if none limits it.
+// Gondzio's centrality target: for each cone, the spectral values v0 +- ||v1|| of v moved
+// into [lo, hi] (those above hi by at most hi), returned as the difference t (same spectral
+// frame as v): zero in cones that are already well centred.
+void cone_centrality_correction(const ConeProgram& p, const Eigen::VectorXd& v, double lo, double hi, Eigen::VectorXd& t);
+
 double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u);
 
 // Smallest u0 - ||u1|| over the cones (negative when u is outside some cone).

@@ -9,8 +9,12 @@
 //   4. sigma = (1 - a + a^2 ds~^T dz~ / lambda^T lambda)^3 from its step a;
 //   5. combined direction with the second-order term and centring:
 //      lambda o (W^{-1} ds + W dz) = -lambda o lambda - ds~_a o dz~_a + sigma mu e;
-//   6. step: step_fraction times the longest step keeping s and z inside the cones,
-//      computed on the scaled point (well centred, so accurate to the end).
+//   6. Gondzio's centrality correctors (settings.max_correctors, same factorisation): aim at
+//      a longer step, correct the cones whose complementarity products there would leave
+//      [0.1, 10] sigma mu, keep the corrector if the step gets longer;
+//   7. step: step_fraction (fast_step_fraction once sigma < fast_sigma) times the longest
+//      step keeping s and z inside the cones, computed on the scaled point (well centred, so
+//      accurate to the end).
 //
 // The caller gives the starting x, k (initialize builds interior s and z from them) and a
 // monitor that sees every iterate and decides when to stop (e.g. on a certified gap).

@@ -31,6 +31,17 @@
 
 namespace strictmin::socp {
 
+// Where the linear algebra's time went (wall and process CPU seconds) and how often.
+struct KktTimers {
+  double analyze_wall = 0, analyze_cpu = 0;      // ordering, pattern, symbolic analysis (once)
+  double assemble_wall = 0, assemble_cpu = 0;    // element contributions and gather
+  double factorize_wall = 0, factorize_cpu = 0;  // CHOLMOD numeric factorisation (with retries)
+  double border_wall = 0, border_cpu = 0;        // the k column's extra solve and Schur complement
+  double solve_wall = 0, solve_cpu = 0;          // triangular solves (every right-hand side)
+  double apply_wall = 0, apply_cpu = 0;          // matrix-free products (CG and residual checks)
+  int factorizations = 0, solves = 0, applies = 0;
+};
+
 // A Newton direction: dv = (dx, dk), dy, and the cone parts ds, dz with their scaled forms
 // dst = W^{-1} ds, dzt = W dz.
 struct Direction {
@@ -54,12 +65,16 @@ class NormalEquations {
   //   ds = M dv - r_s.
   // Solved by the normal equations, then refined against this (unreduced) system, so that the
   // dual equations hold to round-off in G and dz (not in the far larger W^{-2}).
+  // tolerance: relative residual the refinement aims at (<= 0: settings.refinement_tolerance);
+  // the predictor and the centrality correctors need far less than the step's direction.
   void solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx, double rdk,
-                    const Eigen::VectorXd& req, Direction& d);
+                    const Eigen::VectorXd& req, Direction& d, double tolerance = 0);
 
   double regularization() const { return delta_; }
   Eigen::Index matrix_nonzeros() const { return matrix_.nonZeros(); }
   double analyze_flops() const;  // CHOLMOD's flop count of one factorisation
+  double factor_nonzeros() const;  // CHOLMOD's nnz(L)
+  const KktTimers& timers() const { return timers_; }
 
  private:
   void build_pattern();
@@ -81,7 +96,7 @@ class NormalEquations {
   const IpmSettings& settings_;
   const Scaling* scaling_ = nullptr;
   int npairs_ = 0;                         // local lower-triangle pairs per element
-  Eigen::SparseMatrix<double> matrix_;     // H_xx (+ P + penalty + delta), lower triangle
+  Eigen::SparseMatrix<double> matrix_;     // H_xx (+ P + penalty + delta), upper triangle
   std::vector<int> slot_target_;           // #cones * npairs: nonzero index or -1
   std::vector<int> gather_offset_, gather_;  // nonzero -> slots
   std::vector<int> diagonal_;              // dof -> nonzero index of its diagonal
@@ -89,12 +104,13 @@ class NormalEquations {
   Eigen::VectorXd slot_values_, cone_k_;   // per-iteration element contributions
   Eigen::SparseMatrix<double, Eigen::RowMajor> at_;  // A^T (dofs by equalities)
   std::vector<int> perm_;                  // dof -> row of matrix_ (fill-reducing order)
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt_;
   Eigen::VectorXd llt_solve(const Eigen::VectorXd& b) const;  // in dof numbering
   double delta_ = 0, inv_rho_ = 0;
   Eigen::VectorXd diag_saved_;
   Eigen::VectorXd hxk_, u_;                // k column and H_xx^{-1} h_xk
   double hkk_ = 0, schur_ = 1;
+  mutable KktTimers timers_;
 };
 
 }  // namespace strictmin::socp

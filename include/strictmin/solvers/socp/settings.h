@@ -10,6 +10,20 @@ struct IpmSettings {
   double gap_tolerance = 1e-8;          // default stopping test (ipm.h: default_converged)
   double feasibility_tolerance = 1e-8;
   double step_fraction = 0.95;          // fraction of the step to the cone boundary
+  // ... raised to fast_step_fraction when the centring parameter sigma is below fast_sigma
+  // (the predictor went almost all the way: the fast local phase).
+  double fast_step_fraction = 0.99;
+  double fast_sigma = 1e-2;
+  // Gondzio's multiple centrality correctors: after the predictor-corrector direction, at most
+  // max_correctors extra solves (same factorisation) that move the complementarity products of
+  // the point a longer step away (step + corrector_step_increase) towards [0.1, 10] sigma mu;
+  // each is kept only if it lengthens the step by at least corrector_acceptance times the
+  // increase aimed at.
+  int max_correctors = 2;
+  double corrector_step_increase = 0.2;
+  double corrector_acceptance = 0.1;
+  // Correctors only while the longest step is below this (near 1 they cannot gain much).
+  double corrector_max_step = 0.95;
   // Static regularisation of the normal matrix: each diagonal entry is multiplied by
   // 1 + regularization (plus 1e-3 * regularization * the largest one); regularization is
   // multiplied by 100 on every failed factorisation (at most factorization_retries times).
@@ -19,6 +33,14 @@ struct IpmSettings {
   // on the normal equations, stopping at a relative residual of refinement_tolerance.
   int refinement_steps = 10;
   double refinement_tolerance = 1e-10;
+  // The same for the predictor (it only sets sigma and the second-order term) and for the
+  // centrality correctors (added to the direction, so their error adds to its residual).
+  // CG stops early after refinement_patience steps in a row that do not reduce the best
+  // residual by the factor refinement_progress.
+  double refinement_progress = 0.5;
+  int refinement_patience = 2;
+  double predictor_tolerance = 1e-4;
+  double corrector_tolerance = 1e-6;
   // Newton directions whose relative residual stays above max_newton_residual for
   // max_bad_directions iterations in a row are unreliable: the normal equations have become
   // too ill-conditioned for double precision; the method stops with NumericalError (the
