@@ -1,0 +1,225 @@
+#include "strictmin/tasks/interp.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/measures/measures.h"
+#include "strictmin/measures/polar.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/tasks/rotation_unwrap.h"
+
+namespace strictmin {
+namespace {
+
+std::string element_text(const Eigen::MatrixXi& F, int e) {
+  std::ostringstream os;
+  os << "(";
+  for (int j = 0; j < F.cols(); ++j) os << (j ? " " : "") << F(e, j);
+  os << ")";
+  return os.str();
+}
+
+void check_same_connectivity(const Mesh& s, const Mesh& t, const std::string& sn, const std::string& tn) {
+  const auto kind = [](const Mesh& m) { return m.F.cols() == 4 ? std::string("tets") : std::string("triangles"); };
+  if (s.F.cols() != t.F.cols())
+    throw InputError(sn + " has " + kind(s) + " but " + tn + " has " + kind(t) + "; interpolation needs the same elements");
+  if (s.num_vertices() != t.num_vertices())
+    throw InputError(sn + " has " + std::to_string(s.num_vertices()) + " vertices but " + tn + " has " +
+                     std::to_string(t.num_vertices()) + "; interpolation needs the same connectivity");
+  if (s.num_elements() != t.num_elements())
+    throw InputError(sn + " has " + std::to_string(s.num_elements()) + " elements but " + tn + " has " +
+                     std::to_string(t.num_elements()) + "; interpolation needs the same connectivity");
+  for (int e = 0; e < s.num_elements(); ++e)
+    if (s.F.row(e) != t.F.row(e))
+      throw InputError("element " + std::to_string(e) + " (0-based) differs: " + element_text(s.F, e) + " in " + sn +
+                       ", " + element_text(t.F, e) + " in " + tn + "; interpolation needs the same connectivity");
+}
+
+Eigen::MatrixXd as_3d(const Eigen::MatrixXd& V) {
+  if (V.cols() == 3) return V;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(V.rows(), 3);
+  out.leftCols(V.cols()) = V;
+  return out;
+}
+
+int find_root(std::vector<int>& parent, int v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+std::string interp_kind_name(InterpKind k) {
+  switch (k) {
+    case InterpKind::Planar: return "planar";
+    case InterpKind::Surface: return "surface";
+    case InterpKind::Tets: return "tets";
+  }
+  return "?";
+}
+
+Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::string& sn, const std::string& tn)
+    : source_(source) {
+  check_same_connectivity(source, target, sn, tn);
+  if (source.num_elements() == 0) throw InputError(sn + " has no elements");
+  if (source.F.cols() == 4) kind_ = InterpKind::Tets;
+  else kind_ = source.is_planar() && target.is_planar() ? InterpKind::Planar : InterpKind::Surface;
+
+  problem_ = make_problem(source);
+  const int E = problem_.num_elements();
+  if (kind_ == InterpKind::Planar) {
+    source_X_ = to_planar(source).V;
+    target_X_ = to_planar(target).V;
+    source_z_ = source.V.cols() == 3 ? source.V(0, 2) : 0.0;
+    target_z_ = target.V.cols() == 3 ? target.V(0, 2) : 0.0;
+  } else {
+    source_X_ = as_3d(source.V);
+    target_X_ = as_3d(target.V);
+  }
+  if (kind_ == InterpKind::Surface) {
+    // A surface triangle in its own 2D frame maps into 3D: J is 3 by 2.
+    problem_.image_dim = 3;
+    problem_.positions = source_X_;
+    problem_.targets.resize(static_cast<Eigen::Index>(E) * 3, 2);
+  }
+  const int n = problem_.image_dim, d = problem_.domain_dim;
+  if (kind_ == InterpKind::Surface) frames_.resize(static_cast<Eigen::Index>(E) * 3, 2);
+  shapes_.resize(static_cast<Eigen::Index>(E) * d, d);
+  Eigen::MatrixXd logs(E, d == 2 && n == 2 ? 1 : 3);
+  for (int e = 0; e < E; ++e) {
+    const Eigen::MatrixXd Jt = problem_.jacobian(e, target_X_);
+    if (kind_ == InterpKind::Surface) {
+      // Jt = U Y with U (3 by 2) orthonormal columns; the 3D rotation R takes the source
+      // frame Fs (the source's own differential) and its normal to U and U's normal.
+      const Eigen::MatrixXd Fs = problem_.jacobian(e, source_X_);
+      const Eigen::MatrixXd U = closest_rotation(Jt);
+      const Eigen::MatrixXd Y = U.transpose() * Jt;
+      shapes_.middleRows(e * 2, 2) = 0.5 * (Y + Y.transpose());
+      frames_.middleRows(e * 3, 3) = Fs;
+      const Eigen::Vector3d u0 = U.col(0), u1 = U.col(1), f0 = Fs.col(0), f1 = Fs.col(1);
+      Eigen::Matrix3d A, B;
+      A << u0, u1, u0.cross(u1);
+      B << f0, f1, f0.cross(f1);
+      logs.row(e) = rotation_log(A * B.transpose()).transpose();
+    } else {
+      const Polar p = polar_decomposition(Jt);
+      shapes_.middleRows(e * d, d) = p.Y;
+      if (d == 2) logs(e, 0) = rotation_angle(p.R);
+      else logs.row(e) = rotation_log(p.R).transpose();
+    }
+  }
+  const auto neighbours = element_neighbours(problem_.elements);
+  logs_ = logs.cols() == 1 ? Eigen::MatrixXd(unwrap_angles(neighbours, logs.col(0))) : unwrap_rotation_vectors(neighbours, logs);
+
+  // Connected parts (each gets its own pin).
+  const int V = problem_.num_vertices;
+  std::vector<int> parent(V);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<char> used(V, 0);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < problem_.corners(); ++j) {
+      used[problem_.elements(e, j)] = 1;
+      parent[find_root(parent, problem_.elements(e, j))] = find_root(parent, problem_.elements(e, 0));
+    }
+  component_.assign(V, -1);
+  std::vector<int> id(V, -1);
+  for (int v = 0; v < V; ++v) {
+    if (!used[v]) continue;
+    const int r = find_root(parent, v);
+    if (id[r] < 0) id[r] = num_components_++;
+    component_[v] = id[r];
+  }
+}
+
+Eigen::MatrixXd Interpolator::targets_at(double t, Eigen::MatrixXd* shapes) const {
+  const int n = problem_.image_dim, d = problem_.domain_dim, E = problem_.num_elements();
+  Eigen::MatrixXd targets(static_cast<Eigen::Index>(E) * n, d);
+  shapes->resize(static_cast<Eigen::Index>(E) * n, d);
+  for (int e = 0; e < E; ++e) {
+    const Eigen::MatrixXd Yt = (1 - t) * Eigen::MatrixXd::Identity(d, d) + t * shapes_.middleRows(e * d, d);
+    if (kind_ == InterpKind::Planar) {
+      shapes->middleRows(e * 2, 2) = Yt;
+      targets.middleRows(e * 2, 2) = rotation_2d(t * logs_(e, 0)) * Yt;
+    } else {
+      const Eigen::Matrix3d R = rotation_exp(t * logs_.row(e).transpose());
+      // Surfaces: the shape handed to the local step is Fs Y(t) (3 by 2), so its target
+      // Q Fs Y(t) ranges over the same family U Y(t) (U with orthonormal columns).
+      const Eigen::MatrixXd S = kind_ == InterpKind::Surface ? Eigen::MatrixXd(frames_.middleRows(e * 3, 3) * Yt) : Yt;
+      shapes->middleRows(e * n, n) = S;
+      targets.middleRows(e * n, n) = R * S;
+    }
+  }
+  return targets;
+}
+
+InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
+  if (!(t >= 0.0 && t <= 1.0)) throw InputError("interpolation time t = " + std::to_string(t) + " is outside [0, 1]");
+  const Method method = options.solver.method;
+  if (method == Method::Exact)
+    throw InputError("interp: the exact strict minimizer is for field deviation only; use direct or relax");
+  if (kind_ == InterpKind::Surface && (method == Method::Relax || method == Method::Direct))
+    throw InputError("interp: " + method_name(method) +
+                     " needs maps between spaces of the same dimension (planar triangles or tets); for 3D surfaces "
+                     "use l2, linf, lp or irls");
+  const int V = problem_.num_vertices;
+  if (options.pin_vertex >= V || (options.pin_vertex >= 0 && component_[options.pin_vertex] < 0))
+    throw InputError("interp: pinned vertex " + std::to_string(options.pin_vertex) + " is not a vertex of an element (the mesh has " +
+                     std::to_string(V) + " vertices, 0-based)");
+
+  Problem p = problem_;
+  LocalGlobalOptions lg = options.local_global;
+  lg.local = LocalStep::Rotation;
+  p.targets = targets_at(t, &lg.shapes);
+  const Eigen::MatrixXd X_t = (1 - t) * source_X_ + t * target_X_;  // linear interpolation: pins only
+  // One pinned vertex per connected part: the asked-for one in its part, else the part's first.
+  std::vector<int> anchor(num_components_, -1);
+  if (options.pin_vertex >= 0) anchor[component_[options.pin_vertex]] = options.pin_vertex;
+  for (int v = 0; v < V; ++v)
+    if (component_[v] >= 0 && anchor[component_[v]] < 0) anchor[component_[v]] = v;
+  p.positions = X_t;
+  for (int v = 0; v < V; ++v) p.fixed[v] = component_[v] < 0 ? 1 : 0;
+  for (int a : anchor) p.fixed[a] = 1;
+
+  InterpFrame out;
+  out.t = t;
+  const Result start = solve_l2(p);  // FD with the interpolated targets
+  if (!start.ok() || lg.max_iterations <= 0) {
+    out.result = lg.max_iterations <= 0 && start.ok() ? run_method(p, options.solver) : start;
+  } else {
+    out.result = local_global(p, start.positions, options.solver, lg);
+  }
+  // The distortion is translation invariant, so pinning the centroid is pinning any vertex
+  // and then translating each part to its interpolated centroid.
+  Eigen::MatrixXd& X = out.result.positions;
+  for (int c = 0; c < num_components_; ++c) {
+    if (options.pin_vertex >= 0 && component_[options.pin_vertex] == c) continue;
+    Eigen::RowVectorXd shift = Eigen::RowVectorXd::Zero(X.cols());
+    int count = 0;
+    for (int v = 0; v < V; ++v)
+      if (component_[v] == c) {
+        shift += X_t.row(v) - X.row(v);
+        ++count;
+      }
+    shift /= count;
+    for (int v = 0; v < V; ++v)
+      if (component_[v] == c) X.row(v) += shift;
+  }
+  out.result.distortion = local_distortion(p, X, lg);
+
+  out.mesh = source_;
+  if (kind_ == InterpKind::Planar && source_.V.cols() == 3) {
+    out.mesh.V.leftCols(2) = X;
+    out.mesh.V.col(2).setConstant((1 - t) * source_z_ + t * target_z_);  // between the two planes
+  } else {
+    out.mesh.V = X;
+  }
+  out.stats = distortion_stats(out.result.distortion, p.weights);
+  if (kind_ != InterpKind::Surface)
+    for (int e = 0; e < p.num_elements(); ++e) out.stats.flipped += is_flipped(p.jacobian(e, X)) ? 1 : 0;
+  return out;
+}
+
+}  // namespace strictmin

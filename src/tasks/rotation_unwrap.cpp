@@ -1,0 +1,102 @@
+#include "strictmin/tasks/rotation_unwrap.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <queue>
+#include <utility>
+
+namespace strictmin {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Visits every element in BFS order, calling fix(element, parent) (parent -1 for the first
+// element of each connected part).
+void breadth_first(const std::vector<std::vector<int>>& neighbours, const std::function<void(int, int)>& fix) {
+  const int E = static_cast<int>(neighbours.size());
+  std::vector<char> seen(E, 0);
+  std::queue<int> queue;
+  for (int root = 0; root < E; ++root) {
+    if (seen[root]) continue;
+    seen[root] = 1;
+    fix(root, -1);
+    queue.push(root);
+    while (!queue.empty()) {
+      const int e = queue.front();
+      queue.pop();
+      for (int f : neighbours[e])
+        if (!seen[f]) {
+          seen[f] = 1;
+          fix(f, e);
+          queue.push(f);
+        }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> element_neighbours(const Eigen::MatrixXi& F) {
+  const int E = static_cast<int>(F.rows()), c = static_cast<int>(F.cols());
+  // One sorted key per facet (the element minus one corner), then equal keys are neighbours.
+  std::vector<std::pair<std::array<int, 3>, int>> facets;
+  facets.reserve(static_cast<size_t>(E) * c);
+  for (int e = 0; e < E; ++e)
+    for (int skip = 0; skip < c; ++skip) {
+      std::array<int, 3> key{-1, -1, -1};  // triangles: an edge and a -1
+      for (int j = 0, k = 0; j < c; ++j)
+        if (j != skip) key[k++] = F(e, j);
+      std::sort(key.begin(), key.end());
+      facets.emplace_back(key, e);
+    }
+  std::sort(facets.begin(), facets.end());
+  std::vector<std::vector<int>> out(E);
+  for (size_t i = 0; i < facets.size();) {
+    size_t j = i + 1;
+    while (j < facets.size() && facets[j].first == facets[i].first) ++j;
+    for (size_t a = i; a < j; ++a)
+      for (size_t b = a + 1; b < j; ++b)
+        if (facets[a].second != facets[b].second) {
+          out[facets[a].second].push_back(facets[b].second);
+          out[facets[b].second].push_back(facets[a].second);
+        }
+    i = j;
+  }
+  return out;
+}
+
+Eigen::VectorXd unwrap_angles(const std::vector<std::vector<int>>& neighbours, const Eigen::VectorXd& angles) {
+  Eigen::VectorXd out = angles;
+  breadth_first(neighbours, [&](int e, int parent) {
+    const double reference = parent < 0 ? 0.0 : out(parent);
+    out(e) = angles(e) - kTwoPi * std::round((angles(e) - reference) / kTwoPi);
+  });
+  return out;
+}
+
+Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w) {
+  Eigen::MatrixXd out = w;
+  breadth_first(neighbours, [&](int e, int parent) {
+    if (parent < 0) return;
+    const Eigen::Vector3d v = w.row(e).transpose(), reference = out.row(parent).transpose();
+    const double angle = v.norm();
+    if (angle < 1e-12) {  // the identity: its other logarithms are 2 pi k turns about any axis
+      const double r = reference.norm();
+      if (r > 0) out.row(e) = (kTwoPi * std::round(r / kTwoPi) / r) * reference.transpose();
+      return;
+    }
+    const Eigen::Vector3d axis = v / angle;
+    Eigen::Vector3d best = v;
+    for (int k = -2; k <= 2; ++k) {
+      const Eigen::Vector3d candidate = (angle + kTwoPi * k) * axis;
+      if ((candidate - reference).norm() < (best - reference).norm()) best = candidate;
+    }
+    out.row(e) = best.transpose();
+  });
+  return out;
+}
+
+}  // namespace strictmin

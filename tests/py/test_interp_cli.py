@@ -1,0 +1,101 @@
+"""End-to-end tests of `strictmin interp`: one output per t named PREFIX_<t>.<ext>, the
+summary, t = 0 / 1 give the poses, and the errors for a mismatched pair. Run by ctest with
+STRICTMIN_CLI pointing at the built tool."""
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
+DATA = os.environ.get("STRICTMIN_SHARED_DATA", "")
+
+
+def run(*args, check_code=None):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
+    if check_code is not None and p.returncode != check_code:
+        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
+    return p
+
+
+def bar_obj(path, turn, nx=20, ny=2):
+    """A 10 x 1 grid bar, rolled onto an arc turning by `turn` radians (0: straight)."""
+    lines = []
+    for j in range(ny + 1):
+        for i in range(nx + 1):
+            x, y = 10.0 * i / nx, 1.0 * j / ny
+            if turn:
+                r0 = 10.0 / turn
+                r = r0 - (y - 0.5)
+                x, y = r * math.sin(x / 10.0 * turn), r0 - r * math.cos(x / 10.0 * turn)
+            lines.append(f"v {x!r} {y!r} 0")
+    for j in range(ny):
+        for i in range(nx):
+            a, b = j * (nx + 1) + i + 1, j * (nx + 1) + i + 2
+            c, d = a + nx + 1, b + nx + 1
+            lines += [f"f {a} {b} {d}", f"f {a} {d} {c}"]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def read_obj_vertices(path):
+    with open(path) as f:
+        return [tuple(map(float, l.split()[1:4])) for l in f if l.startswith("v ")]
+
+
+class Interp(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.src = bar_obj(os.path.join(self.dir, "src.obj"), 0)
+        self.dst = bar_obj(os.path.join(self.dir, "dst.obj"), 1.5 * math.pi)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_frames_and_summary(self):
+        prefix = os.path.join(self.dir, "frame")
+        p = run("interp", self.src, self.dst, "--t", "0,0.5,1", "--method", "linf", "-o", prefix,
+                "--summary", "-", "--quiet", check_code=0)
+        self.assertEqual(p.stderr, "")
+        s = json.loads(p.stdout)
+        self.assertEqual(s["task"], "interp")
+        self.assertEqual(s["kind"], "planar")
+        self.assertEqual(s["pin"], "centroid")
+        self.assertEqual([f["t"] for f in s["frames"]], [0, 0.5, 1])
+        for f, name in zip(s["frames"], ["frame_0.obj", "frame_0.5.obj", "frame_1.obj"]):
+            self.assertEqual(os.path.basename(f["output"]), name)
+            self.assertTrue(os.path.exists(f["output"]))
+            self.assertEqual(f["flipped"], 0)
+        for out, pose in (("frame_0.obj", self.src), ("frame_1.obj", self.dst)):
+            got, want = read_obj_vertices(os.path.join(self.dir, out)), read_obj_vertices(pose)
+            self.assertEqual(len(got), len(want))
+            self.assertLess(max(abs(a - b) for g, w in zip(got, want) for a, b in zip(g, w)), 1e-5)
+
+    def test_mismatched_connectivity(self):
+        other = bar_obj(os.path.join(self.dir, "other.obj"), 0, nx=21)
+        p = run("interp", self.src, other, "--t", "0.5", check_code=1)
+        self.assertIn("vertices", p.stderr)
+        self.assertIn("other.obj", p.stderr)
+
+    def test_bad_options(self):
+        self.assertIn("outside [0, 1]", run("interp", self.src, self.dst, "--t", "1.5", check_code=1).stderr)
+        self.assertIn("--pin", run("interp", self.src, self.dst, "--pin", "middle", check_code=1).stderr)
+        self.assertIn("single --t", run("interp", self.src, self.dst, "--t", "0.2,0.4", "--distortion",
+                                        os.path.join(self.dir, "d.txt"), check_code=1).stderr)
+
+    def test_shared_tet_bar(self):
+        rest = os.path.join(DATA, "interp", "tetbar_rest.mesh")
+        if not os.path.exists(rest):
+            self.skipTest("no shared data")
+        prefix = os.path.join(self.dir, "tetbar")
+        s = json.loads(run("interp", rest, os.path.join(DATA, "interp", "tetbar_init.mesh"), "--t", "0.5",
+                           "-o", prefix, "--summary", "-", "--quiet", check_code=0).stdout)
+        self.assertEqual(s["kind"], "tets")
+        self.assertTrue(os.path.exists(prefix + "_0.5.mesh"))
+
+
+if __name__ == "__main__":
+    unittest.main()
