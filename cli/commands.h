@@ -8,5 +8,7 @@ void add_deform_command(CLI::App& app, int& exit_code);
 void add_eval_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 void add_demo_command(CLI::App& app, int& exit_code);
+void add_interp_command(CLI::App& app, int& exit_code);
+void add_param_command(CLI::App& app, int& exit_code);
 
 }  // namespace strictmin::cli

@@ -1,0 +1,180 @@
+// strictmin param MESH -o OUT.obj [--measure arap|asap|fd] [--method ...] [--init tutte|lscm]
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "commands.h"
+#include "common.h"
+#include "report_output.h"
+#include "solver_options.h"
+#include "strictmin/io/atomic_file.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/report/html_report.h"
+#include "strictmin/tasks/param.h"
+
+namespace strictmin::cli {
+namespace {
+
+struct ParamArgs {
+  std::string mesh, output, measure = "arap";
+  int lg_iterations = 100;
+  double lg_tolerance = 1e-4;
+  SolverArgs solver;
+  OutputOptions out;
+  ReportArgs report;
+};
+
+// param --report DIR: summary.json, the map's surface view, UV layout and checkerboard
+// (report/comparison.h draws maps with UVs that way), histogram.svg and index.html.
+std::string write_param_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input,
+                               const Mesh& mesh, const ParamOutcome& p) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(a.dir, ec);
+  if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
+  write_file_atomically((fs::path(a.dir) / "summary.json").string(),
+                        [&](std::ostream& os) { os << summary.dump(2) << '\n'; });
+  const std::string method = summary.value("method", std::string("l2"));
+  SectionInput in;
+  in.title = method_label(method) + " parametrization of " + input_title(input);
+  in.description = "Task param, measure " + summary.value("measure", std::string("arap")) + ", start " +
+                   summary.value("init", std::string("tutte")) + ", " + std::to_string(mesh.num_elements()) +
+                   " triangles, " + std::to_string(p.flips) + " flipped, boundary " +
+                   (p.boundary_overlap ? "overlaps itself." : "does not overlap.");
+  in.measure = measure_description(summary.value("measure", std::string("arap")));
+  in.rest = &mesh;
+  MethodRun run;
+  run.method = method;
+  run.mapped = p.mapped;
+  run.distortion = p.measured.distortion;
+  run.weights = p.measured.weights;
+  run.flipped = p.flips;
+  run.lower_bound = p.result.lower_bound;
+  run.time_s = p.result.time_s;
+  run.status = status_name(p.result.status);
+  run.message = p.result.message;
+  run.view_name = "view";
+  run.links.emplace_back("summary.json", "summary.json");
+  in.runs.push_back(std::move(run));
+  ComparisonOptions o;
+  o.scale = a.scale;
+  o.picture_width = 520;
+  o.png_height = 380;
+  HtmlReport report;
+  report.title = "strictmin: " + in.title;
+  report.scale = a.scale;
+  report.sections.push_back(write_section(a.dir, in, o));
+  report.sections.back().id = "result";
+  const std::string index = (fs::path(a.dir) / "index.html").string();
+  write_index_html(index, report);
+  return index;
+}
+
+int run_param(ParamArgs a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto threads = limit_threads(a.out.threads);
+  ParamOptions options;
+  const auto measure = parse_measure(a.measure);
+  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use arap, asap or fd)");
+  options.measure = *measure;
+  // --init names the starting map (tutte, lscm); a method name there is relax's start.
+  if (a.solver.init == "tutte" || a.solver.init == "lscm") {
+    options.init = a.solver.init == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;
+    a.solver.init = "linf";
+  }
+  if (a.solver.method == "tutte" || a.solver.method == "lscm") {
+    options.init = a.solver.method == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;
+    options.init_only = true;
+    a.solver.method = "l2";
+  }
+  options.solver = make_solver_options(a.solver, a.out);
+  options.local_global.max_iterations = a.lg_iterations;
+  options.local_global.relative_change = a.lg_tolerance;
+  if (!a.out.quiet)
+    options.local_global.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "local-global iter %3d  max %.8g  relative change %.2e  %.2f s\n", r.iteration,
+                   r.max_distortion, r.gap, r.time_s);
+    };
+  if (a.mesh.empty()) throw InputError("param needs a mesh file (a triangle surface with one boundary loop)");
+  std::vector<std::string> warnings;
+  const Mesh mesh = read_mesh(a.mesh, &warnings);
+  for (const auto& w : warnings) progress(a.out, "warning: " + w);
+  const std::string method = options.init_only ? init_name(options.init) : method_name(options.solver.method);
+  progress(a.out, "param: " + std::to_string(mesh.num_elements()) + " triangles, method " + method + ", measure " +
+                      a.measure + ", start " + init_name(options.init));
+
+  const ParamOutcome p = parametrize(mesh, options, a.mesh);
+  if (!p.result.ok()) progress(a.out, "warning: " + status_name(p.result.status) + ": " + p.result.message);
+  if (!a.output.empty()) write_mesh(a.output, p.mapped);
+  nlohmann::json s;
+  s["task"] = "param";
+  s["input"] = a.mesh;
+  s["output"] = a.output;
+  s["distortion_file"] = a.out.distortion;
+  s["method"] = method;
+  s["measure"] = measure_name(options.measure);
+  s["init"] = init_name(options.init);
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["boundary_vertices"] = p.boundary.size();
+  s["max_distortion"] = number_or_null(p.measured.stats.max);
+  s["max_element"] = p.measured.stats.max_element;
+  s["l2_distortion"] = number_or_null(p.measured.stats.l2);
+  s["mean_distortion"] = number_or_null(p.measured.stats.mean);
+  s["flipped"] = p.measured.stats.flipped;
+  s["flips"] = p.flips;
+  s["boundary_overlap"] = p.boundary_overlap;
+  s["status"] = status_name(p.result.status);
+  if (!p.result.message.empty()) s["message"] = p.result.message;
+  if (!options.init_only) {
+    add_solver_summary(s, options.solver, p.result);
+    if (options.measure != Measure::FieldDeviation) {
+      s["local_global_iterations"] = p.result.iterations;
+      s["stop_reason"] = p.result.message;
+      nlohmann::json history = nlohmann::json::array();
+      for (const auto& r : p.result.history) history.push_back({{"iteration", r.iteration}, {"max", r.max_distortion}});
+      s["history"] = history;
+    }
+  }
+  s["init_time_s"] = p.init_time_s;
+  s["solver_time_s"] = p.result.time_s;
+  s["time_s"] = seconds_since(t0);
+  write_outputs(a.out, s, p.measured.distortion);
+  if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_param_report(a.report, s, a.mesh, mesh, p)));
+  progress(a.out, "param: max distortion " + std::to_string(p.measured.stats.max) + ", L2 " +
+                      std::to_string(p.measured.stats.l2) + ", " + std::to_string(p.flips) + " flipped, boundary " +
+                      (p.boundary_overlap ? "overlaps" : "ok") + ", " + status_name(p.result.status));
+  return exit_code_for(p.result.status);
+}
+
+}  // namespace
+
+void add_param_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ParamArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "param",
+      "Parametrize a disk-topology surface (one boundary loop) in the plane with a free boundary: the least "
+      "ARAP / ASAP distortion in the chosen norm, written as the OBJ's vt coordinates.");
+  cmd->add_option("mesh", args->mesh, "Input surface (.obj/.off/.ply triangles, one boundary loop)");
+  cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, the map as vt, f v/vt");
+  cmd->add_option("--measure", args->measure,
+                  "arap or asap (local-global iterations around the method), fd (frames from the starting map)")
+      ->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")
+      ->capture_default_str();
+  cmd->add_option("--lg-tolerance", args->lg_tolerance,
+                  "arap/asap: stop when the maximum changes by less than this (relative)")
+      ->capture_default_str();
+  add_solver_options(*cmd, args->solver);
+  cmd->get_option("--method")
+      ->description("tutte or lscm (the starting map itself), l2 (Liu et al. 2008 ARAP), linf (least maximum), "
+                    "relax / direct (strict minimizer), lp / irls (baselines)");
+  cmd->get_option("--init")->description(
+      "the starting map: tutte (default; bijective) or lscm; l2, lp, irls or linf: relax's start (default linf)");
+  add_output_options(*cmd, args->out);
+  add_report_options(*cmd, args->report);
+  cmd->callback([args, &exit_code] { exit_code = run_param(*args); });
+}
+
+}  // namespace strictmin::cli

@@ -1,0 +1,117 @@
+"""End-to-end tests of `strictmin param`: the UV OBJ, the summary keys, the errors for
+meshes that are not disks (exit 1). Run by ctest with STRICTMIN_CLI set."""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
+
+
+def run(*args, check_code=None):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
+    if check_code is not None and p.returncode != check_code:
+        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
+    return p
+
+
+def cap_obj(rings=5, sectors=16, max_polar=1.1, drop_fan=False):
+    """A spherical cap as OBJ text (drop_fan: without the polar fan, an annulus)."""
+    lines = ["v 0 0 1"]
+    for r in range(1, rings + 1):
+        for s in range(sectors):
+            t, a = max_polar * r / rings, 2 * math.pi * s / sectors
+            lines.append(f"v {math.sin(t) * math.cos(a)} {math.sin(t) * math.sin(a)} {math.cos(t)}")
+
+    def vid(r, s):
+        return 2 + (r - 1) * sectors + s % sectors  # 1-based
+
+    if not drop_fan:
+        lines += [f"f 1 {vid(1, s)} {vid(1, s + 1)}" for s in range(sectors)]
+    for r in range(1, rings):
+        for s in range(sectors):
+            lines.append(f"f {vid(r, s)} {vid(r + 1, s)} {vid(r + 1, s + 1)}")
+            lines.append(f"f {vid(r, s)} {vid(r + 1, s + 1)} {vid(r, s + 1)}")
+    return "\n".join(lines) + "\n"
+
+
+TETRA = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"
+KEYS = {"task", "input", "output", "method", "measure", "init", "elements", "vertices", "max_distortion",
+        "l2_distortion", "flips", "boundary_overlap", "status", "time_s"}
+
+
+class Param(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.cap = os.path.join(self.dir, "cap.obj")
+        with open(self.cap, "w") as f:
+            f.write(cap_obj())
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name, text):
+        p = os.path.join(self.dir, name)
+        with open(p, "w") as f:
+            f.write(text)
+        return p
+
+    def test_linf_writes_uv_obj_and_summary(self):
+        out = os.path.join(self.dir, "uv.obj")
+        p = run("param", self.cap, "-o", out, "--method", "linf", "--summary", "-", "--quiet", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertTrue(KEYS <= s.keys(), KEYS - s.keys())
+        self.assertEqual((s["task"], s["method"], s["measure"], s["init"]), ("param", "linf", "arap", "tutte"))
+        self.assertEqual(s["flips"], 0)
+        self.assertFalse(s["boundary_overlap"])
+        self.assertIn("lower_bound", s)
+        with open(out) as f:
+            text = f.read().splitlines()
+        vt = [l for l in text if l.startswith("vt ")]
+        faces = [l for l in text if l.startswith("f ")]
+        self.assertEqual(len(vt), 1 + 5 * 16)
+        self.assertEqual(len(faces), s["elements"])
+        self.assertTrue(all("/" in f for f in faces), faces[:2])
+        # eval measures the written map the same way.
+        e = run("eval", self.cap, out, "--measure", "arap", "--summary", "-", "--quiet", check_code=0)
+        self.assertAlmostEqual(json.loads(e.stdout)["max_distortion"], s["max_distortion"], places=5)
+
+    def test_init_methods_and_lscm_start(self):
+        for method in ("tutte", "lscm"):
+            s = json.loads(run("param", self.cap, "--method", method, "--summary", "-", "--quiet", check_code=0).stdout)
+            self.assertEqual(s["method"], method)
+        s = json.loads(run("param", self.cap, "--init", "lscm", "--method", "l2", "--summary", "-", "--quiet",
+                           check_code=0).stdout)
+        self.assertEqual(s["init"], "lscm")
+        self.assertIn("local_global_iterations", s)
+
+    def test_closed_mesh_is_rejected(self):
+        p = run("param", self.path("tet.obj", TETRA), "-o", os.path.join(self.dir, "x.obj"), check_code=1)
+        self.assertIn("closed", p.stderr)
+        self.assertIn("genus 0", p.stderr)
+        self.assertIn("cut it to a disk first", p.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.obj")))
+
+    def test_two_boundary_loops_are_rejected(self):
+        p = run("param", self.path("annulus.obj", cap_obj(drop_fan=True)), check_code=1)
+        self.assertIn("2 boundary loops", p.stderr)
+
+    def test_unknown_measure_and_method(self):
+        self.assertIn("unknown measure", run("param", self.cap, "--measure", "bogus", check_code=1).stderr)
+        self.assertIn("unknown method", run("param", self.cap, "--method", "bogus", check_code=1).stderr)
+
+    def test_report(self):
+        rep = os.path.join(self.dir, "rep")
+        run("param", self.cap, "--method", "l2", "--report", rep, "--quiet", check_code=0)
+        self.assertTrue(os.path.exists(os.path.join(rep, "index.html")))
+        self.assertTrue(os.path.exists(os.path.join(rep, "summary.json")))
+
+
+if __name__ == "__main__":
+    if not os.path.exists(CLI) and "/" in CLI:
+        sys.exit(77)
+    unittest.main()

@@ -1,0 +1,219 @@
+// Disk parametrization (issue 6): topology checks, Tutte and LSCM starts, and the methods
+// on surfaces with known answers (developable patches unroll with no ARAP distortion, a
+// plane maps to itself) and on a spherical cap and a real disk, where L-infinity and the
+// strict minimizer must beat L2 ARAP's maximum.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/mesh/surface_generators.h"
+#include "strictmin/param/lscm.h"
+#include "strictmin/param/topology.h"
+#include "strictmin/param/tutte.h"
+#include "strictmin/param/uv_checks.h"
+#include "strictmin/report/strict_order.h"
+#include "strictmin/tasks/param.h"
+
+using namespace strictmin;
+
+namespace {
+
+std::string error_of(const Mesh& m) {
+  try {
+    disk_boundary(m, "m.obj");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+Mesh concat(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
+ParamOutcome run(const Mesh& m, Method method, ParamInit init = ParamInit::Tutte, int lg = 100, double tol = 1e-4) {
+  ParamOptions o;
+  o.init = init;
+  o.solver.method = method;
+  o.local_global.max_iterations = lg;
+  o.local_global.relative_change = tol;
+  return parametrize(m, o);
+}
+
+TEST(Topology, FindsTheBoundaryLoopOfADisk) {
+  const Mesh cap = make_spherical_cap(4, 12);
+  const std::vector<int> loop = disk_boundary(cap, "cap");
+  EXPECT_EQ(loop.size(), 12u);
+  const SurfaceTopology t = surface_topology(cap);
+  EXPECT_EQ(t.genus(), 0);
+  EXPECT_EQ(t.components, 1);
+}
+
+TEST(Topology, RejectsMeshesThatAreNotDisks) {
+  // Closed: the surface of a tetrahedron.
+  Mesh tet;
+  tet.V = Eigen::MatrixXd(4, 3);
+  tet.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  tet.F = Eigen::MatrixXi(4, 3);
+  tet.F << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2;
+  EXPECT_NE(error_of(tet).find("closed (no boundary, genus 0"), std::string::npos) << error_of(tet);
+  EXPECT_NE(error_of(tet).find("cut it to a disk first"), std::string::npos);
+  // Two boundary loops: a cap without its polar fan (an annulus).
+  Mesh cap = make_spherical_cap(4, 12);
+  Mesh annulus = cap;
+  annulus.F = cap.F.bottomRows(cap.F.rows() - 12);
+  EXPECT_NE(error_of(annulus).find("2 boundary loops"), std::string::npos) << error_of(annulus);
+  // Two components.
+  EXPECT_NE(error_of(concat(cap, cap)).find("2 connected components"), std::string::npos);
+  // A bow tie: two triangles sharing only vertex 0.
+  Mesh bow;
+  bow.V = Eigen::MatrixXd(5, 3);
+  bow.V << 0, 0, 0, 1, 0, 0, 1, 1, 0, -1, 0, 0, -1, -1, 0;
+  bow.F = Eigen::MatrixXi(2, 3);
+  bow.F << 0, 1, 2, 0, 3, 4;
+  EXPECT_NE(error_of(bow).find("vertex 0 (0-based) is non-manifold"), std::string::npos) << error_of(bow);
+  // An edge in three faces.
+  Mesh fin;
+  fin.V = Eigen::MatrixXd(5, 3);
+  fin.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
+  fin.F = Eigen::MatrixXi(3, 3);
+  fin.F << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  EXPECT_NE(error_of(fin).find("non-manifold"), std::string::npos) << error_of(fin);
+}
+
+TEST(UvChecks, FlipsAndBoundaryOverlap) {
+  Mesh g = make_grid(3, 3);
+  Eigen::MatrixXd X = g.V;
+  EXPECT_EQ(count_flips(g.F, X), 0);
+  X.col(0) = -X.col(0);  // all mirrored: still one orientation
+  EXPECT_EQ(count_flips(g.F, X), 0);
+  X.row(5) << 5, 5;  // an interior vertex thrown outside
+  EXPECT_GT(count_flips(g.F, X), 0);
+  Eigen::MatrixXd square(4, 2), bowtie(4, 2);
+  square << 0, 0, 1, 0, 1, 1, 0, 1;
+  bowtie << 0, 0, 1, 1, 1, 0, 0, 1;
+  EXPECT_FALSE(polygon_self_intersects(square, {0, 1, 2, 3}));
+  EXPECT_TRUE(polygon_self_intersects(bowtie, {0, 1, 2, 3}));
+}
+
+TEST(Tutte, IsFlipFreeWithTheBoundaryOnACircle) {
+  const Mesh cap = make_spherical_cap(8, 24, 1.4);
+  const std::vector<int> loop = disk_boundary(cap, "cap");
+  const Eigen::MatrixXd X = tutte_embedding(cap, loop);
+  EXPECT_EQ(count_flips(cap.F, X), 0);
+  EXPECT_FALSE(polygon_self_intersects(X, loop));
+  for (int v : loop) EXPECT_NEAR(X.row(v).norm(), 1.0, 1e-12);
+}
+
+// Developable patches: LSCM is exactly an isometry after scaling; L2 ARAP from Tutte
+// converges to it (ARAP max below 1e-3; the patches have edge lengths about 0.1).
+TEST(Param, DevelopablePatchesUnrollWithoutDistortion) {
+  for (const Mesh& m : {make_cylinder_patch(10, 8), make_cone_patch(10, 8)}) {
+    ParamOptions o;
+    o.init = ParamInit::Lscm;
+    o.init_only = true;
+    EXPECT_LT(parametrize(m, o).measured.stats.max, 1e-8);
+    const ParamOutcome arap = run(m, Method::L2, ParamInit::Tutte, 2000, 1e-9);
+    EXPECT_LT(arap.measured.stats.max, 1e-3);
+    EXPECT_EQ(arap.flips, 0);
+    const ParamOutcome linf = run(m, Method::Linf, ParamInit::Tutte, 200, 1e-7);
+    EXPECT_LT(linf.measured.stats.max, 1e-3);
+  }
+}
+
+// A plane maps to itself up to a rigid motion: every edge keeps its length, no flips.
+TEST(Param, PlanarPatchMapsToItselfRigidly) {
+  const Mesh m = make_tilted_plane(6, 5);
+  const ParamOutcome p = run(m, Method::L2, ParamInit::Tutte, 2000, 1e-10);
+  EXPECT_EQ(p.flips, 0);
+  EXPECT_EQ(p.measured.stats.flipped, 0);  // orientation kept: not a mirror image
+  double worst = 0;
+  for (int f = 0; f < m.num_elements(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const int a = m.F(f, j), b = m.F(f, (j + 1) % 3);
+      const double rest = (m.V.row(a) - m.V.row(b)).norm(), mapped = (p.mapped.UV.row(a) - p.mapped.UV.row(b)).norm();
+      worst = std::max(worst, std::abs(mapped - rest) / rest);
+    }
+  EXPECT_LT(worst, 1e-4);
+}
+
+// On a spherical cap no map is an isometry; the L-infinity and strict maps have a lower
+// maximum ARAP distortion than L2 ARAP and LSCM, and the strict one is not above L-infinity
+// in the strict order (value tolerance 1e-4 of the maximum, area tolerance 1e-6 of the total).
+TEST(Param, SphericalCapLinfAndStrictBeatL2AndLscm) {
+  const Mesh cap = make_spherical_cap(8, 24, 1.2);
+  ParamOptions lo;
+  lo.init = ParamInit::Lscm;
+  lo.init_only = true;
+  const double lscm_max = parametrize(cap, lo).measured.stats.max;
+  const ParamOutcome l2 = run(cap, Method::L2);
+  const ParamOutcome linf = run(cap, Method::Linf);
+  const ParamOutcome relax = run(cap, Method::Relax);
+  EXPECT_TRUE(linf.result.ok()) << status_name(linf.result.status) << ": " << linf.result.message;
+  EXPECT_LT(linf.measured.stats.max, l2.measured.stats.max * 0.99);
+  EXPECT_LT(linf.measured.stats.max, lscm_max * 0.99);
+  EXPECT_LT(relax.measured.stats.max, l2.measured.stats.max * 0.99);
+  EXPECT_LT(relax.measured.stats.max, lscm_max * 0.99);
+  EXPECT_EQ(linf.flips, 0);
+  EXPECT_EQ(relax.flips, 0);
+  EXPECT_FALSE(relax.boundary_overlap);
+  const double tol = 1e-4 * linf.measured.stats.max;
+  const StrictComparison c =
+      compare_strict(relax.measured.distortion, linf.measured.distortion, linf.measured.weights, tol, 1e-6);
+  // The cap is rotationally symmetric and linf is already (nearly) strict there: relax must
+  // not be worse; on the real disk below it must be strictly better.
+  EXPECT_NE(c.order, StrictOrder::Greater) << describe(c, "relax", "linf");
+  std::printf("cap ARAP max: lscm %.4f  L2 %.4f  linf %.4f  relax %.4f\n", lscm_max, l2.measured.stats.max,
+              linf.measured.stats.max, relax.measured.stats.max);
+}
+
+TEST(Param, FdUsesFramesOfTheStartingMap) {
+  const Mesh cap = make_spherical_cap(6, 16, 1.0);
+  ParamOptions o;
+  o.measure = Measure::FieldDeviation;
+  o.init_only = true;
+  const ParamOutcome start = parametrize(cap, o);
+  // fd against the start's own rotations is its ARAP distortion.
+  ParamOptions a = o;
+  a.measure = Measure::Arap;
+  EXPECT_LT((start.measured.distortion - parametrize(cap, a).measured.distortion).cwiseAbs().maxCoeff(), 1e-9);
+  o.init_only = false;
+  o.solver.method = Method::Linf;
+  const ParamOutcome linf = parametrize(cap, o);
+  EXPECT_LE(linf.measured.stats.max, start.measured.stats.max);
+}
+
+// The real small disk: Tutte is flip-free; linf below L2 ARAP's maximum; the strict map
+// less distorting than the linf one.
+TEST(Param, RealDiskBimba) {
+  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk" / "bimba_1k.obj";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared data at " << file;
+  const Mesh m = read_mesh(file.string());
+  ParamOptions t;
+  t.init_only = true;
+  const ParamOutcome tutte = parametrize(m, t);
+  EXPECT_EQ(tutte.flips, 0);
+  EXPECT_FALSE(tutte.boundary_overlap);
+  const ParamOutcome l2 = run(m, Method::L2, ParamInit::Tutte, 30);
+  const ParamOutcome linf = run(m, Method::Linf, ParamInit::Tutte, 30);
+  const ParamOutcome relax = run(m, Method::Relax, ParamInit::Tutte, 30);
+  EXPECT_LT(linf.measured.stats.max, l2.measured.stats.max);
+  const double tol = 1e-4 * linf.measured.stats.max;
+  const StrictComparison c =
+      compare_strict(relax.measured.distortion, linf.measured.distortion, linf.measured.weights, tol, 1e-6);
+  EXPECT_EQ(c.order, StrictOrder::Less) << describe(c, "relax", "linf");
+  std::printf("bimba_1k ARAP max: tutte %.4f  L2 %.4f  linf %.4f  relax %.4f; flips %d %d %d\n",
+              tutte.measured.stats.max, l2.measured.stats.max, linf.measured.stats.max, relax.measured.stats.max,
+              l2.flips, linf.flips, relax.flips);
+}
+
+}  // namespace
