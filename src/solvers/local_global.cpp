@@ -79,7 +79,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     return r;
   }
   std::unique_ptr<RelaxSweeper> sweeper;
-  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p);
+  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance);
   double previous = max_of(local_distortion(p, out.positions, o), solver.linf.element_bounds);
   out.message = "reached the iteration cap";
   for (int it = 1; it <= o.max_iterations; ++it) {
