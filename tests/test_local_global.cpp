@@ -66,9 +66,7 @@ SmallBar small_bar(bool tets) {
 }
 
 // Handles from a rigid motion: every method returns a rigid map (ARAP distortion ~0).
-class RigidHandles : public ::testing::TestWithParam<Method> {};
-
-TEST_P(RigidHandles, GiveARigidMap) {
+void expect_rigid_map(Method method) {
   for (bool tets : {false, true}) {
     const SmallBar bar = small_bar(tets);
     const int d = bar.mesh.dim();
@@ -79,19 +77,22 @@ TEST_P(RigidHandles, GiveARigidMap) {
     for (int v : bar.ends) handles.push_back({v, Q * bar.mesh.V.row(v).transpose() + Eigen::VectorXd::Ones(d)});
     DeformOptions o;
     o.measure = Measure::Arap;
-    o.solver.method = GetParam();
+    o.solver.method = method;
     o.local_global.max_iterations = 300;
     o.local_global.relative_change = 1e-12;
     const DeformOutcome out = deform(bar.mesh, handles, o);
     // Local-global converges linearly; from the L2 field-deviation start (distortion ~1)
     // 300 iterations bring every element within 1e-3 of rigid.
-    EXPECT_LT(out.measured.stats.max, 1e-3) << (tets ? "tets " : "triangles ") << method_name(GetParam()) << ": "
+    EXPECT_LT(out.measured.stats.max, 1e-3) << (tets ? "tets " : "triangles ") << method_name(method) << ": "
                                             << out.result.message;
     EXPECT_EQ(out.measured.stats.flipped, 0);
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, RigidHandles, ::testing::Values(Method::L2, Method::Linf),
+class RigidHandles : public ::testing::TestWithParam<Method> {};
+TEST_P(RigidHandles, GiveARigidMap) { expect_rigid_map(GetParam()); }
+INSTANTIATE_TEST_SUITE_P(Methods, RigidHandles,
+                         ::testing::Values(Method::L2, Method::Linf, Method::Relax, Method::Direct, Method::Lp, Method::Irls),
                          [](const auto& info) { return method_name(info.param); });
 
 TEST(LocalGlobal, LinfNeverRaisesTheMaximum) {
@@ -111,6 +112,22 @@ TEST(LocalGlobal, LinfNeverRaisesTheMaximum) {
   s.method = Method::L2;
   const Result l2 = local_global(p, solve_l2(p).positions, s, o);
   EXPECT_LT(r.distortion.maxCoeff(), l2.distortion.maxCoeff());
+}
+
+TEST(LocalGlobal, ArapOfARigidMotionIsZero) {
+  for (bool tets : {false, true}) {
+    const SmallBar bar = small_bar(tets);
+    Problem p = make_problem(bar.mesh);
+    const int d = bar.mesh.dim();
+    Eigen::MatrixXd Q(d, d);
+    if (d == 2) Q = Eigen::Rotation2Dd(2.5).toRotationMatrix();
+    else Q = Eigen::AngleAxisd(2.5, Eigen::Vector3d(-1, 0.5, 2).normalized()).toRotationMatrix();
+    const Eigen::MatrixXd X = (p.positions * Q.transpose()).rowwise() + Eigen::RowVectorXd::Constant(d, 0.7);
+    LocalGlobalOptions o;
+    EXPECT_LT(local_distortion(p, X, o).maxCoeff(), 1e-12) << (tets ? "tets" : "triangles");
+    o.local = LocalStep::Similarity;  // ASAP of a scaled rigid motion too
+    EXPECT_LT(local_distortion(p, 1.5 * X, o).maxCoeff(), 1e-12) << (tets ? "tets" : "triangles");
+  }
 }
 
 TEST(LocalGlobal, AsapOfASimilarityIsZero) {
