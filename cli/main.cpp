@@ -1,5 +1,8 @@
 // strictmin: maps of triangle and tet meshes with the least worst-case distortion.
 #include <CLI/CLI.hpp>
+#include <dlfcn.h>
+
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -7,7 +10,17 @@
 #include "common.h"
 #include "strictmin/io/input_error.h"
 
+// OpenBLAS's own threads spin against CHOLMOD's and TBB's on small machines: one BLAS
+// thread is never slower for our supernodal factorizations and often much faster (the 100k
+// bar of bench_linf: 7.4 s against 11.1 s on 2 cores, docs/performance.md). Looked up at run
+// time, so that any BLAS links; OPENBLAS_NUM_THREADS, when set, wins.
+static void use_one_blas_thread() {
+  if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+  if (void* f = dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) reinterpret_cast<void (*)(int)>(f)(1);
+}
+
 int main(int argc, char** argv) {
+  use_one_blas_thread();
   CLI::App app{
       "strictmin: maps of triangle and tetrahedral meshes with the least possible worst-case distortion\n"
       "(L2, L-infinity and strict minimizers; Levi & Zorin 2014).\n\n"

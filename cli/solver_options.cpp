@@ -21,6 +21,11 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
   g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices")->capture_default_str();
   g->add_option("--move-tolerance", a.move_tolerance, "relax: stop when no vertex moves more than this")
       ->capture_default_str();
+  g->add_option("--accept-tolerance", a.accept_tolerance,
+                "relax: a move must improve its ring in the strict order with values within this fraction of "
+                "the ring maximum counted as equal (0: any decrease of the ring maximum)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   g->add_option("--init", a.init, "relax: start from l2, lp, irls or linf")->capture_default_str();
   g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum")
       ->capture_default_str();
@@ -45,6 +50,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.irls.iterations = a.irls_iterations;
   o.relax.sweeps = a.sweeps;
   o.relax.move_tolerance = a.move_tolerance;
+  o.relax.accept_tolerance = a.accept_tolerance;
   o.direct.delta_k = a.delta_k;
   o.direct.k_min = a.k_min;
   o.direct.linf = o.linf;
@@ -85,6 +91,7 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
   if (o.method == Method::Relax) {
     s["sweeps"] = r.iterations;
     s["init"] = method_name(o.relax_init);
+    s["accept_tolerance"] = o.relax.accept_tolerance;
   }
   if (o.method == Method::Lp) s["p"] = o.lp.p;
 }

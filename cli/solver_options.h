@@ -21,6 +21,7 @@ struct SolverArgs {
   // relax
   int sweeps = 50;
   double move_tolerance = 0;
+  double accept_tolerance = 1e-4;
   std::string init = "linf";
   // direct, exact
   double delta_k = 1e-3;

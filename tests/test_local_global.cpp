@@ -92,7 +92,7 @@ void expect_rigid_map(Method method) {
 class RigidHandles : public ::testing::TestWithParam<Method> {};
 TEST_P(RigidHandles, GiveARigidMap) { expect_rigid_map(GetParam()); }
 INSTANTIATE_TEST_SUITE_P(Methods, RigidHandles,
-                         ::testing::Values(Method::L2, Method::Linf, Method::Direct, Method::Lp, Method::Irls),
+                         ::testing::Values(Method::L2, Method::Linf, Method::Relax, Method::Direct, Method::Lp, Method::Irls),
                          [](const auto& info) { return method_name(info.param); });
 
 TEST(LocalGlobal, LinfNeverRaisesTheMaximum) {
@@ -113,11 +113,6 @@ TEST(LocalGlobal, LinfNeverRaisesTheMaximum) {
   const Result l2 = local_global(p, solve_l2(p).positions, s, o);
   EXPECT_LT(r.distortion.maxCoeff(), l2.distortion.maxCoeff());
 }
-
-// Known failure (reported on issue #5): relax local-global (one sweep per local step) stalls
-// short of the rigid map, max ARAP ~6e-3 (triangles) and ~5e-2 (tets) after it stops.
-// Enable with --gtest_also_run_disabled_tests once relax local-global is fixed.
-TEST(LocalGlobal, DISABLED_RelaxRigidHandlesGiveARigidMap) { expect_rigid_map(Method::Relax); }
 
 TEST(LocalGlobal, ArapOfARigidMotionIsZero) {
   for (bool tets : {false, true}) {

@@ -61,6 +61,21 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     out.distortion = local_distortion(p, out.positions, o);
     return out;
   }
+  if (solver.method == Method::Relax && solver.relax_init != Method::Relax) {
+    // Algorithm 3 improves another method's result (--init, default linf): here that
+    // method's own local-global solution. Sweeps alone from a far start stall like any
+    // coordinate descent on a maximum (rigid handles end at ARAP ~6e-3 instead of 0).
+    SolverOptions init = solver;
+    init.method = solver.relax_init;
+    const Result start = local_global(p, out.positions, init, o);
+    if (!start.ok() && start.status != SolveStatus::MaxIterations) {
+      Result failed = start;
+      failed.message = "relax start (" + method_name(init.method) + "): " + start.message;
+      return failed;
+    }
+    out.positions = start.positions;
+    out.lower_bound = start.lower_bound;
+  }
   if (solver.method == Method::Direct) {
     // Every level of the direct algorithm runs local-global L-infinity iterations; bounds
     // fixed at earlier levels stay valid because the local step never raises a D_T.
@@ -79,7 +94,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     return r;
   }
   std::unique_ptr<RelaxSweeper> sweeper;
-  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p);
+  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance);
   double previous = max_of(local_distortion(p, out.positions, o), solver.linf.element_bounds);
   out.message = "reached the iteration cap";
   for (int it = 1; it <= o.max_iterations; ++it) {

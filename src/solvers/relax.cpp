@@ -15,7 +15,7 @@ using namespace relax_detail;
 
 struct RelaxSweeper::Impl : SweepData {};
 
-RelaxSweeper::RelaxSweeper(const Problem& p) {
+RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance) : accept_tolerance_(accept_tolerance) {
   auto impl = std::make_shared<Impl>();
   build(p, *impl);
   impl_ = std::move(impl);
@@ -29,7 +29,7 @@ double RelaxSweeper::sweep(const Problem& problem, Eigen::MatrixXd& X, double* m
                      " entries, expected " + std::to_string(problem.num_vertices) + " by " +
                      std::to_string(impl_->dim));
   Deviations dev;
-  return sweep_any(*impl_, problem, X, dev, max_distortion);
+  return sweep_any(*impl_, problem, X, dev, accept_tolerance_, max_distortion);
 }
 
 int RelaxSweeper::num_colours() const { return impl_->colouring.num_colours; }
@@ -62,7 +62,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     IterationRecord record;
     record.iteration = s;
     if (dev.age >= kRefreshInterval) dev.age = -1;
-    const double move = sweep_any(data, problem, X, dev, &record.max_distortion);
+    const double move = sweep_any(data, problem, X, dev, options.accept_tolerance, &record.max_distortion);
     record.time_s = elapsed();
     result.history.push_back(record);
     result.iterations = s;

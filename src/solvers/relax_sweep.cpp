@@ -14,12 +14,13 @@
 #include <string>
 
 #include "strictmin/io/input_error.h"
+#include "ring_order.h"
 #include "strictmin/solvers/one_ring.h"
 
 namespace strictmin::relax_detail {
 
-// A move is accepted only if it lowers the ring's maximum squared distortion by this much
-// (relative): a strict decrease that rounding cannot fake. Below it, the vertex stays.
+// A move must lower the ring's maximum squared distortion by at least this much (relative):
+// a strict decrease that rounding cannot fake. Below it, the vertex stays.
 constexpr double kAcceptRelative = 1e-13;
 constexpr uint32_t kNoGuess = 0xffffffffu;
 
@@ -58,6 +59,9 @@ template <int d>
 struct Scratch {
   std::vector<RingTerm<d>> terms;
   std::vector<double> current;  // D_T^2 before the move
+  // For the acceptance test: D_T before and after, areas, sort scratch.
+  std::vector<double> before, after, area;
+  std::vector<int> order;
 };
 
 struct Accumulator {
@@ -65,8 +69,32 @@ struct Accumulator {
   double top = 0;   // largest D_T^2 after the sweep over the elements seen so far
 };
 
+// Whether moving by q (which lowers the ring maximum from current, squared) is accepted: the
+// ring's distortion must improve in the strict order with values within tolerance * (ring
+// maximum) counted as equal. Without the tolerance, a move that lowers the maximum by a
+// rounding-sized amount while raising the ring's other elements up to it would count as
+// progress, and sweeps would creep every element up to the top level.
 template <int d>
-double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Deviations& dev, double* max_distortion) {
+bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec<d>& q, double current,
+                 double tolerance) {
+  const double top = std::sqrt(current), tau = tolerance * top;
+  double new_top = 0;
+  for (int k = 0; k < n; ++k) {
+    const RingTerm<d>& t = sc.terms[k];
+    sc.after[k] = std::sqrt(t.a * (q - t.centre).squaredNorm() + t.b);
+    new_top = std::max(new_top, sc.after[k]);
+  }
+  if (new_top < top - tau) return true;  // the top level itself went down
+  for (int k = 0; k < n; ++k) {
+    sc.before[k] = std::sqrt(sc.current[k]);
+    sc.area[k] = s.weights[s.ring[first + k] >> 3];
+  }
+  return ring_improves(sc.before.data(), sc.after.data(), sc.area.data(), n, tau, sc.order.data());
+}
+
+template <int d>
+double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Deviations& dev, double accept_tolerance,
+                 double* max_distortion) {
   if (dev.age < 0) compute_deviations<d>(s, p, Xm, dev);
   double* X = Xm.data();
   const Eigen::Index xrows = Xm.rows();
@@ -75,6 +103,10 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
     Scratch<d> sc;
     sc.terms.resize(s.max_ring);
     sc.current.resize(s.max_ring);
+    sc.before.resize(s.max_ring);
+    sc.after.resize(s.max_ring);
+    sc.area.resize(s.max_ring);
+    sc.order.resize(2 * s.max_ring);
     return sc;
   });
 
@@ -119,7 +151,8 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
           for (int i = 0; i < sol.active; ++i)
             support = (support & ~(0xffu << (8 * i))) | static_cast<uint32_t>(sol.support[i]) << (8 * i);
         s.guesses[idx].store(support, std::memory_order_relaxed);
-        if (sol.value < current * (1 - kAcceptRelative)) {
+        if (sol.value < current * (1 - kAcceptRelative) &&
+            accept_move<d>(s, sc, first, n, sol.q, current, accept_tolerance)) {
           moved = true;
           q = sol.q;
           for (int r = 0; r < d; ++r) X[r * xrows + v] += q(r);
@@ -154,8 +187,10 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
   return total.move;
 }
 
-double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double* max_distortion) {
-  return s.dim == 2 ? sweep_dim<2>(s, p, X, dev, max_distortion) : sweep_dim<3>(s, p, X, dev, max_distortion);
+double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double accept_tolerance,
+                 double* max_distortion) {
+  return s.dim == 2 ? sweep_dim<2>(s, p, X, dev, accept_tolerance, max_distortion)
+                    : sweep_dim<3>(s, p, X, dev, accept_tolerance, max_distortion);
 }
 
 // Packs the problem's elements and gradients, colours the free vertices and lists their
@@ -168,10 +203,12 @@ void build(const Problem& p, SweepData& s) {
   if (p.has_equalities()) throw InputError("relax: linear equality constraints (seams) are not supported");
   const int E = p.num_elements(), c = d + 1;
   if (p.elements.cols() != c || p.gradients.rows() != static_cast<Eigen::Index>(E) * c ||
-      p.targets.rows() != static_cast<Eigen::Index>(E) * d || static_cast<int>(p.fixed.size()) != p.num_vertices)
+      p.targets.rows() != static_cast<Eigen::Index>(E) * d || p.weights.size() != E ||
+      static_cast<int>(p.fixed.size()) != p.num_vertices)
     throw InputError("relax: the problem's arrays do not match its element count and dimensions");
 
   s.dim = d;
+  s.weights.assign(p.weights.data(), p.weights.data() + E);
   s.colouring = colour_free_vertices(p.elements, p.fixed);
   s.corners.resize(static_cast<size_t>(E) * c);
   s.gradients.resize(static_cast<size_t>(E) * c * (d + 1));

@@ -25,6 +25,7 @@ struct SweepData {
   // element << 3 | corner << 1 | last, where last = 1 when, of the element's free corners,
   // this vertex moves last in a sweep (it then sees the element's final value).
   std::vector<uint32_t> ring;
+  std::vector<double> weights;    // #E areas (volumes), for the acceptance test
   std::vector<int> closed;        // elements without a free corner: they never change
   int max_ring = 0;
   // Per position in colouring.order: the support of the vertex's last ring solve (up to 4
@@ -44,8 +45,11 @@ struct Deviations {
 void build(const Problem& p, SweepData& s);
 
 // One sweep over every free vertex, colour by colour, moving X in place; dev is computed
-// from X first if dev.age < 0, then kept up to date. Returns the largest move; sets
-// *max_distortion (if not null) to the largest field deviation after the sweep.
-double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double* max_distortion);
+// from X first if dev.age < 0, then kept up to date. A vertex moves to its ring's minimax
+// position only if that improves the ring in the strict order with values within
+// accept_tolerance * (ring maximum) counted as equal (RelaxOptions). Returns the largest
+// move; sets *max_distortion (if not null) to the largest field deviation after the sweep.
+double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double accept_tolerance,
+                 double* max_distortion);
 
 }  // namespace strictmin::relax_detail

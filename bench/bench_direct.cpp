@@ -1,0 +1,46 @@
+// The direct strict minimizer (paper Algorithm 2, delta_k = 1e-3, k_min = 0.1 as in the
+// paper) at ~10k, ~50k and ~100k triangles, on the problems of bench_linf (problems.h).
+// Counters: triangles, steps (the paper's Table 1 "direct, #" column), L-infinity solves,
+// the first level k and the last. Progress per step on stderr: one run takes minutes.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+
+#include "problems.h"
+#include "strictmin/solvers/strict.h"
+
+using namespace strictmin;
+
+namespace {
+
+void run(benchmark::State& state, const Problem& p) {
+  Result r;
+  StrictStep last;
+  for (auto _ : state) {
+    DirectOptions options;
+    options.progress = [&](const StrictStep& s) {
+      last = s;
+      std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %.1f s\n", s.step, s.k, s.fixed_total, s.fixed_now,
+                   s.time_s);
+    };
+    r = solve_direct(p, options);
+    benchmark::DoNotOptimize(r.positions.data());
+  }
+  state.counters["triangles"] = p.num_elements();
+  state.counters["steps"] = r.iterations;
+  state.counters["solves"] = last.solves;
+  state.counters["k_first"] = r.history.empty() ? 0.0 : r.history.front().max_distortion;
+  state.counters["k_last"] = r.history.empty() ? 0.0 : r.history.back().max_distortion;
+  if (!r.ok()) state.SkipWithError(("not solved: " + r.message).c_str());
+}
+
+void BM_DirectSquare(benchmark::State& state) { run(state, bench::square_problem(static_cast<int>(state.range(0)))); }
+void BM_DirectBar(benchmark::State& state) { run(state, bench::bar_problem(static_cast<int>(state.range(0)))); }
+
+}  // namespace
+
+// ~10k, ~50k, ~100k triangles.
+BENCHMARK(BM_DirectSquare)->Arg(71)->Arg(158)->Arg(224)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_DirectBar)->Arg(35)->Arg(79)->Arg(112)->Unit(benchmark::kSecond)->Iterations(1);
+
+BENCHMARK_MAIN();
