@@ -279,13 +279,14 @@ Problem data_problem(const std::string& name) {
 // The claim for relax from its default start: the maximum stays at the L-infinity
 // optimum (it cannot go below; it must not go above: within 1e-3 relative), and the map is
 // less distorting than the L-infinity map in the strict order at every value tolerance from
-// 1e-6 to 1e-4 (relative): the first level that differs has less area. The Figure 2 square
-// is the hard case for the rule: every map there can be pushed to distortion 0.3 everywhere
-// by moves that each lower a ring maximum by a rounding-sized amount
-// (RelaxOptions::accept_tolerance). Where the top level is huge (bump_domain: 1403 of 8058
-// triangles at the optimum within 1e-6 in both maps) the two maps are equivalent at the top
-// and a verdict at the acceptance tolerance itself (1e-4) can turn on a few triangles: there
-// "more distorting" is allowed only by an area under 0.1% of the total (docs/strict.md).
+// 1e-4 (relative to the maximum): the first level that differs has less area. The Figure 2
+// square is the hard case for the rule: every map there can be pushed to distortion 0.3
+// everywhere by moves that each lower a ring maximum by a rounding-sized amount
+// (RelaxOptions::accept_tolerance). At finer tolerances (1e-6, 1e-5), below the acceptance
+// tolerance, the verdict is "less", or "more" by an area under 0.1% of the total: where the
+// top level is huge (bump_domain: ~1400 of 8058 triangles at the optimum within 1e-6 in both
+// maps) the two maps are equivalent at the top and such verdicts turn on a few triangles at
+// the solver's accuracy (docs/strict.md).
 void less_distorting_than_linf(const Problem& p, const std::string& name) {
   const Result linf = solve_linf(p);
   ASSERT_TRUE(linf.ok()) << linf.message;
@@ -298,12 +299,16 @@ void less_distorting_than_linf(const Problem& p, const std::string& name) {
               std::sqrt(r.distortion.squaredNorm() / p.num_elements()));
   EXPECT_LE(r.distortion.maxCoeff(), k * (1 + 1e-3));
   EXPECT_GE(r.distortion.maxCoeff(), linf.lower_bound * (1 - 1e-6));
-  for (double tol : {1e-6, 1e-5})
-    EXPECT_EQ(compare_strict(r.distortion, linf.distortion, p.weights, tol), -1) << "tolerance " << tol;
-  const StrictComparison c = strictmin::compare_strict(r.distortion, linf.distortion, p.weights, 1e-4 * k);
-  std::printf("  at 1e-4: %s\n", describe(c, "relax", "linf").c_str());
-  if (c.order == StrictOrder::Greater) {
-    EXPECT_LT(c.area_a - c.area_b, 1e-3 * p.weights.sum()) << describe(c, "relax", "linf");
+  for (double tol : {1e-6, 1e-5, 1e-4}) {
+    const StrictComparison c = strictmin::compare_strict(r.distortion, linf.distortion, p.weights, tol * k);
+    std::printf("  at %g: %s\n", tol, describe(c, "relax", "linf").c_str());
+    if (tol == 1e-4) {
+      EXPECT_EQ(c.order, StrictOrder::Less) << describe(c, "relax", "linf");
+    }
+    EXPECT_NE(c.order, StrictOrder::Equivalent);
+    if (c.order == StrictOrder::Greater) {
+      EXPECT_LT(c.area_a - c.area_b, 1e-3 * p.weights.sum()) << describe(c, "relax", "linf");
+    }
   }
 }
 
