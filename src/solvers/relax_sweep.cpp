@@ -75,16 +75,15 @@ struct Accumulator {
 // rounding-sized amount while raising the ring's other elements up to it would count as
 // progress, and sweeps would creep every element up to the top level.
 template <int d>
-bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec<d>& q, double current,
-                 double tolerance) {
+bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec<d>& q, double value,
+                 double current, double tolerance) {
   const double top = std::sqrt(current), tau = tolerance * top;
-  double new_top = 0;
+  // value = the new ring maximum, squared: the top level itself went down (the common case).
+  if (value < (top - tau) * (top - tau)) return true;
   for (int k = 0; k < n; ++k) {
     const RingTerm<d>& t = sc.terms[k];
     sc.after[k] = std::sqrt(t.a * (q - t.centre).squaredNorm() + t.b);
-    new_top = std::max(new_top, sc.after[k]);
   }
-  if (new_top < top - tau) return true;  // the top level itself went down
   for (int k = 0; k < n; ++k) {
     sc.before[k] = std::sqrt(sc.current[k]);
     sc.area[k] = s.weights[s.ring[first + k] >> 3];
@@ -152,7 +151,7 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
             support = (support & ~(0xffu << (8 * i))) | static_cast<uint32_t>(sol.support[i]) << (8 * i);
         s.guesses[idx].store(support, std::memory_order_relaxed);
         if (sol.value < current * (1 - kAcceptRelative) &&
-            accept_move<d>(s, sc, first, n, sol.q, current, accept_tolerance)) {
+            accept_move<d>(s, sc, first, n, sol.q, sol.value, current, accept_tolerance)) {
           moved = true;
           q = sol.q;
           for (int r = 0; r < d; ++r) X[r * xrows + v] += q(r);
