@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "strictmin/io/input_error.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/relax.h"
@@ -32,67 +33,10 @@ double max_of(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
   return m;
 }
 
-}  // namespace
-
-void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
-  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, local_target(p, e, p.jacobian(e, X), o));
-}
-
-Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
-  Eigen::VectorXd d(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) {
-    const Eigen::MatrixXd J = p.jacobian(e, X);
-    d(e) = (J - local_target(p, e, J, o)).norm();
-  }
-  return d;
-}
-
-Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const SolverOptions& solver,
-                    const LocalGlobalOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  Problem p = problem;
-  Result out;
-  out.positions = X0;
-  for (int v = 0; v < p.num_vertices; ++v)
-    if (p.fixed[v]) out.positions.row(v) = p.positions.row(v);
-  if (solver.method == Method::Exact) {
-    out.status = SolveStatus::NumericalError;
-    out.message = "the exact strict minimizer is for field deviation only; use direct or relax with ARAP/ASAP";
-    out.distortion = local_distortion(p, out.positions, o);
-    return out;
-  }
-  if (solver.method == Method::Relax && solver.relax_init != Method::Relax) {
-    // Algorithm 3 improves another method's result (--init, default linf): here that
-    // method's own local-global solution. Sweeps alone from a far start stall like any
-    // coordinate descent on a maximum (rigid handles end at ARAP ~6e-3 instead of 0).
-    SolverOptions init = solver;
-    init.method = solver.relax_init;
-    const Result start = local_global(p, out.positions, init, o);
-    if (!start.ok() && start.status != SolveStatus::MaxIterations) {
-      Result failed = start;
-      failed.message = "relax start (" + method_name(init.method) + "): " + start.message;
-      return failed;
-    }
-    out.positions = start.positions;
-    out.lower_bound = start.lower_bound;
-  }
-  if (solver.method == Method::Direct) {
-    // Every level of the direct algorithm runs local-global L-infinity iterations; bounds
-    // fixed at earlier levels stay valid because the local step never raises a D_T.
-    DirectOptions direct = solver.direct;
-    direct.start = out.positions;
-    direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
-      SolverOptions inner;
-      inner.method = Method::Linf;
-      inner.linf = linf;
-      LocalGlobalOptions lo = o;
-      lo.progress = nullptr;
-      return local_global(level_problem, X, inner, lo);
-    };
-    Result r = solve_direct(p, direct);
-    r.time_s = seconds_since(t0);
-    return r;
-  }
+// The local-global iterations from out.positions: local step, then one global step (one
+// sweep for relax, a solve otherwise), until the cap or a small relative change of the max.
+Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalGlobalOptions& o,
+               std::chrono::steady_clock::time_point t0) {
   std::unique_ptr<RelaxSweeper> sweeper;
   if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance);
   double previous = max_of(local_distortion(p, out.positions, o), solver.linf.element_bounds);
@@ -140,6 +84,81 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   out.distortion = local_distortion(p, out.positions, o);
   out.time_s = seconds_since(t0);
   return out;
+}
+
+}  // namespace
+
+void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, local_target(p, e, p.jacobian(e, X), o));
+}
+
+Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  Eigen::VectorXd d(p.num_elements());
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const Eigen::MatrixXd J = p.jacobian(e, X);
+    d(e) = (J - local_target(p, e, J, o)).norm();
+  }
+  return d;
+}
+
+Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const SolverOptions& solver,
+                    const LocalGlobalOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Problem p = problem;
+  Result out;
+  out.positions = X0;
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (p.fixed[v]) out.positions.row(v) = p.positions.row(v);
+  if (solver.method == Method::Exact) {
+    out.status = SolveStatus::NumericalError;
+    out.message = "the exact strict minimizer is for field deviation only; use direct or relax with ARAP/ASAP";
+    out.distortion = local_distortion(p, out.positions, o);
+    return out;
+  }
+  if (solver.method == Method::Relax) {
+    // Algorithm 3 improves another method's result (--init, default linf): here that
+    // method's own local-global solution. Sweeps alone from a far start stall like any
+    // coordinate descent on a maximum (rigid handles end at ARAP ~6e-3 instead of 0).
+    if (solver.relax_init == Method::Relax) throw InputError("relax cannot start from relax (--init l2|lp|irls|linf)");
+    SolverOptions init = solver;
+    init.method = solver.relax_init;
+    Result start = local_global(p, out.positions, init, o);
+    if (!start.ok() && start.status != SolveStatus::MaxIterations) {
+      start.message = "relax start (" + method_name(init.method) + "): " + start.message;
+      return start;
+    }
+    // Then every one of solver.relax.sweeps sweeps, each followed by a local step: relax
+    // lowers the levels below the maximum, so the maximum's change says nothing here.
+    LocalGlobalOptions sweeps = o;
+    sweeps.max_iterations = solver.relax.sweeps;
+    sweeps.relative_change = -1;
+    out.positions = start.positions;
+    Result r = iterate(p, std::move(out), solver, sweeps, t0);
+    r.lower_bound = start.lower_bound;
+    for (IterationRecord& rec : r.history) rec.iteration += start.iterations;
+    start.history.insert(start.history.end(), r.history.begin(), r.history.end());
+    r.history = std::move(start.history);
+    r.iterations += start.iterations;
+    return r;
+  }
+  if (solver.method == Method::Direct) {
+    // Every level of the direct algorithm runs local-global L-infinity iterations; bounds
+    // fixed at earlier levels stay valid because the local step never raises a D_T.
+    DirectOptions direct = solver.direct;
+    direct.start = out.positions;
+    direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
+      SolverOptions inner;
+      inner.method = Method::Linf;
+      inner.linf = linf;
+      LocalGlobalOptions lo = o;
+      lo.progress = nullptr;
+      return local_global(level_problem, X, inner, lo);
+    };
+    Result r = solve_direct(p, direct);
+    r.time_s = seconds_since(t0);
+    return r;
+  }
+  return iterate(p, std::move(out), solver, o, t0);
 }
 
 }  // namespace strictmin

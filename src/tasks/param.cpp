@@ -29,29 +29,6 @@ MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
   return d;
 }
 
-// Relax as in run_method: local-global with relax_init first (linf by default), then
-// local-global relax sweeps from its map. The relax phase runs all solver.relax.sweeps
-// sweeps: it lowers the lower distortion levels, so the maximum alone says nothing about
-// convergence.
-Result relax_local_global(const Problem& p, const Eigen::MatrixXd& X0, const SolverOptions& solver,
-                          const LocalGlobalOptions& lg) {
-  SolverOptions first = solver;
-  first.method = solver.relax_init;
-  Result start = local_global(p, X0, first, lg);
-  if (start.status == SolveStatus::NumericalError || start.status == SolveStatus::Infeasible) return start;
-  LocalGlobalOptions sweeps = lg;
-  sweeps.max_iterations = solver.relax.sweeps;
-  sweeps.relative_change = -1;  // never stop on the maximum's change
-  Result r = local_global(p, start.positions, solver, sweeps);
-  r.time_s += start.time_s;
-  r.lower_bound = start.lower_bound;
-  r.iterations = start.iterations + r.iterations;
-  for (auto& rec : r.history) rec.iteration += start.iterations;
-  start.history.insert(start.history.end(), r.history.begin(), r.history.end());
-  r.history = std::move(start.history);
-  return r;
-}
-
 }  // namespace
 
 std::string init_name(ParamInit i) { return i == ParamInit::Tutte ? "tutte" : "lscm"; }
@@ -80,8 +57,6 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   } else if (m == Measure::FieldDeviation) {
     local_step(p, out.initial, lg);  // the frames: rotations of the initial map
     out.result = run_method(p, options.solver);
-  } else if (options.solver.method == Method::Relax) {
-    out.result = relax_local_global(p, out.initial, options.solver, lg);
   } else {
     out.result = local_global(p, out.initial, options.solver, lg);
   }

@@ -3,8 +3,10 @@
 // around any solver. The local step sets each element's target to the rotation (ARAP) or
 // similarity (ASAP) closest to its current Jacobian, which never increases any single D_T;
 // the global step runs the chosen solver with the targets fixed. With linf the maximum never
-// increases from one iteration to the next; with relax one sweep is the global step; with
-// direct every level's L-infinity solve becomes local-global iterations.
+// increases from one iteration to the next; relax first runs local-global with its init
+// method (SolverOptions::relax_init, default linf), then relax.sweeps iterations whose global
+// step is one sweep (all of them: the maximum's change is no stopping signal for relax);
+// with direct every level's L-infinity solve becomes local-global iterations.
 //
 // A per-element shape S_T (interpolation: the symmetric factor Y_T(t)) makes the target
 // Q_T S_T with Q_T the rotation closest to J_T S_T^T.
