@@ -140,7 +140,7 @@ int run_demo(const DemoArgs& a) {
       write_outputs(files, run_summary(ex.name, opt.solver, d, mesh_file, dist_file,
                                        static_cast<int>(example.handles.size())),
                     d.measured.distortion);
-      MethodRun run = method_run(name, d);
+      MethodRun run = method_run(name, d, opt.measure);
       run.links = {{"summary", ex.name + "/" + name + ".json"},
                    {"mesh", ex.name + "/" + mesh_file},
                    {"distortion", ex.name + "/" + dist_file}};

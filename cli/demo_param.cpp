@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "report_output.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/surface_generators.h"
 #include "strictmin/tasks/param.h"
@@ -31,16 +32,7 @@ ReportSection write_param_demo_section(const std::string& dir, const ComparisonO
     const ParamOutcome p = parametrize(cap, o, "spherical cap");
     const std::string name = method_name(m);
     write_mesh((fs::path(dir) / "param" / (name + ".obj")).string(), p.mapped);
-    MethodRun run;
-    run.method = name;
-    run.mapped = p.mapped;
-    run.distortion = p.measured.distortion;
-    run.weights = p.measured.weights;
-    run.flipped = p.flips;
-    run.lower_bound = p.result.lower_bound;
-    run.time_s = p.result.time_s;
-    run.status = status_name(p.result.status);
-    run.message = p.result.message;
+    MethodRun run = method_run(name, p, o.measure);
     run.links = {{"UV mesh", "param/" + name + ".obj"}};
     all_solved = all_solved && p.result.ok();
     char line[200];

@@ -1,11 +1,13 @@
 // strictmin interp SOURCE TARGET --t 0.25,0.5,0.75 -o PREFIX [--method l2|linf|...]
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "commands.h"
 #include "common.h"
+#include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
@@ -21,6 +23,7 @@ struct InterpArgs {
   double lg_tolerance = 1e-4;
   SolverArgs solver;
   OutputOptions out;
+  ReportArgs report;
 };
 
 // "PREFIX_0.25.obj": t printed with %g, the extension taken from SOURCE.
@@ -30,6 +33,41 @@ std::string frame_path(const std::string& prefix, double t, const std::string& s
   std::string ext = std::filesystem::path(source).extension().string();
   if (ext.empty()) ext = ".obj";
   return prefix + buf + ext;
+}
+
+// interp --report DIR: one section, the source pose then every frame side by side in one
+// frame of reference, each coloured by its distortion from the blended shapes.
+std::string write_interp_report(const ReportArgs& a, const nlohmann::json& summary, const InterpArgs& args,
+                                const Mesh& source, const std::vector<InterpFrame>& frames) {
+  const std::string method = summary.value("method", std::string("l2"));
+  SectionInput in;
+  in.title = method_label(method) + " interpolation from " + input_title(args.source) + " to " +
+             input_title(args.target);
+  in.description = "Task interp, " + summary.value("kind", std::string("planar")) + ", " +
+                   std::to_string(source.num_elements()) + " elements, " + std::to_string(frames.size()) +
+                   " frame(s). Each frame is coloured by its distortion: the distance of each element's differential "
+                   "from its blended shape and rotation (0 at t = 0 and t = 1).";
+  in.measure = "distance ‖J − Q(t) Y(t)‖ from the blended element";
+  in.rest = &source;
+  in.alternatives = false;  // frames of one sequence, not rival maps
+  for (const InterpFrame& f : frames) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", f.t);
+    MethodRun run = method_run(method, f);
+    run.label = std::string("t = ") + t;
+    run.view_name = std::string("t") + t;
+    run.links.emplace_back("summary.json", "summary.json");
+    in.runs.push_back(std::move(run));
+  }
+  // Automatic scale from the largest frame maximum (frames at t = 0 or 1 have maximum 0).
+  ReportArgs scaled = a;
+  if (!(scaled.scale > 0)) {
+    double largest = 0;
+    for (const InterpFrame& f : frames)
+      if (std::isfinite(f.stats.max)) largest = std::max(largest, f.stats.max);
+    scaled.scale = largest > 0 ? auto_colour_scale(largest) : kDefaultColourScale;
+  }
+  return write_report_folder(scaled, summary, in.title, {in});
 }
 
 int parse_pin(const std::string& pin) {
@@ -89,6 +127,7 @@ int run_interp(const InterpArgs& a) {
   nlohmann::json frames = nlohmann::json::array();
   SolveStatus worst = SolveStatus::Solved;
   Eigen::VectorXd last_distortion;
+  std::vector<InterpFrame> kept;  // for the report
   for (double t : a.times) {
     const auto tf = std::chrono::steady_clock::now();
     progress(a.out, "interp: t = " + std::to_string(t));
@@ -120,6 +159,7 @@ int run_interp(const InterpArgs& a) {
     j["time_s"] = seconds_since(tf);
     frames.push_back(j);
     last_distortion = f.result.distortion;
+    if (!a.report.dir.empty()) kept.push_back(f);
     progress(a.out, "interp: t = " + std::to_string(t) + ": max distortion " + std::to_string(f.stats.max) +
                         (interp.kind() == InterpKind::Surface ? "" : ", " + std::to_string(f.stats.flipped) + " flipped") +
                         (path.empty() ? "" : ", wrote " + path));
@@ -127,6 +167,8 @@ int run_interp(const InterpArgs& a) {
   s["frames"] = frames;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, last_distortion);
+  if (!a.report.dir.empty())
+    progress(a.out, "report: " + file_url(write_interp_report(a.report, s, a, source, kept)));
   return exit_code_for(worst);
 }
 
@@ -159,6 +201,10 @@ void add_interp_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
+  // Frames are close to their blended shapes: an automatic colour scale by default (a fixed
+  // 0.6 would show them all dark blue).
+  args->report.scale = 0;
+  add_report_options(*cmd, args->report);
   cmd->callback([args, &exit_code] { exit_code = run_interp(*args); });
 }
 

@@ -29,12 +29,6 @@ struct ParamArgs {
 // (report/comparison.h draws maps with UVs that way), histogram.svg and index.html.
 std::string write_param_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input,
                                const Mesh& mesh, const ParamOutcome& p) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(a.dir, ec);
-  if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
-  write_file_atomically((fs::path(a.dir) / "summary.json").string(),
-                        [&](std::ostream& os) { os << summary.dump(2) << '\n'; });
   const std::string method = summary.value("method", std::string("l2"));
   SectionInput in;
   in.title = method_label(method) + " parametrization of " + input_title(input);
@@ -44,31 +38,11 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
                    (p.boundary_overlap ? "overlaps itself." : "does not overlap.");
   in.measure = measure_description(summary.value("measure", std::string("arap")));
   in.rest = &mesh;
-  MethodRun run;
-  run.method = method;
-  run.mapped = p.mapped;
-  run.distortion = p.measured.distortion;
-  run.weights = p.measured.weights;
-  run.flipped = p.flips;
-  run.lower_bound = p.result.lower_bound;
-  run.time_s = p.result.time_s;
-  run.status = status_name(p.result.status);
-  run.message = p.result.message;
+  MethodRun run = method_run(method, p, *parse_measure(summary.value("measure", std::string("arap"))));
   run.view_name = "view";
   run.links.emplace_back("summary.json", "summary.json");
   in.runs.push_back(std::move(run));
-  ComparisonOptions o;
-  o.scale = a.scale;
-  o.picture_width = 520;
-  o.png_height = 380;
-  HtmlReport report;
-  report.title = "strictmin: " + in.title;
-  report.scale = a.scale;
-  report.sections.push_back(write_section(a.dir, in, o));
-  report.sections.back().id = "result";
-  const std::string index = (fs::path(a.dir) / "index.html").string();
-  write_index_html(index, report);
-  return index;
+  return write_report_folder(a, summary, in.title, {in});
 }
 
 int run_param(ParamArgs a) {

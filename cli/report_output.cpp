@@ -1,6 +1,7 @@
 #include "report_output.h"
 
 #include <filesystem>
+#include <limits>
 
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
@@ -13,36 +14,87 @@ void add_report_options(CLI::App& cmd, ReportArgs& a) {
                  "Write a report to folder DIR: summary.json, a colour-coded view, histogram.svg and index.html "
                  "(open it in a browser)")
       ->type_name("DIR");
-  cmd.add_option("--report-scale", a.scale, "Report: the distortion shown red (dark blue is 0)")
+  cmd.add_option("--report-scale", a.scale,
+                 "Report: the distortion shown red (dark blue is 0); 0: automatic, 1.5 times the least maximum "
+                 "rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::NonNegativeNumber);
 }
 
-MethodRun method_run(const std::string& method, const DeformOutcome& d) {
+namespace {
+constexpr double kNoBound = std::numeric_limits<double>::quiet_NaN();
+}
+
+MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure measure) {
   MethodRun r;
   r.method = method;
   r.mapped = d.deformed;
   r.distortion = d.measured.distortion;
   r.weights = d.measured.weights;
   r.flipped = d.measured.stats.flipped;
-  r.lower_bound = d.result.lower_bound;
+  r.lower_bound = measure == Measure::FieldDeviation ? d.result.lower_bound : kNoBound;
   r.time_s = d.result.time_s;
   r.status = status_name(d.result.status);
   r.message = d.result.message;
   return r;
 }
 
-std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input_name,
-                              const Mesh& rest, const std::vector<Handle>& handles, const DeformOutcome& d) {
+MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure measure) {
+  MethodRun r;
+  r.method = method;
+  r.mapped = p.mapped;
+  r.distortion = p.measured.distortion;
+  r.weights = p.measured.weights;
+  r.flipped = p.flips;
+  r.lower_bound = measure == Measure::FieldDeviation ? p.result.lower_bound : kNoBound;
+  r.time_s = p.result.time_s;
+  r.status = status_name(p.result.status);
+  r.message = p.result.message;
+  return r;
+}
+
+MethodRun method_run(const std::string& method, const InterpFrame& f) {
+  MethodRun r;
+  r.method = method;
+  r.mapped = f.mesh;
+  r.distortion = f.result.distortion;
+  r.weights = f.weights;
+  r.flipped = f.stats.flipped;
+  r.time_s = f.result.time_s;
+  r.status = status_name(f.result.status);
+  r.message = f.result.message;
+  return r;
+}
+
+std::string write_report_folder(const ReportArgs& a, const nlohmann::json& summary, const std::string& title,
+                                const std::vector<SectionInput>& sections) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(a.dir, ec);
   if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
-  const std::string method = summary.value("method", std::string("given"));
   write_file_atomically((fs::path(a.dir) / "summary.json").string(),
                         [&](std::ostream& os) { os << summary.dump(2) << '\n'; });
+  ComparisonOptions o;
+  o.scale = a.scale;
+  o.picture_width = 520;
+  o.png_height = 380;
+  HtmlReport report;
+  report.title = "strictmin: " + title;
+  report.scale = a.scale;
+  for (const SectionInput& in : sections) {
+    report.sections.push_back(write_section(a.dir, in, o));
+    if (in.id.empty()) report.sections.back().id = "result";
+  }
+  if (!(a.scale > 0) && !report.sections.empty()) report.scale = report.sections.front().scale;  // automatic
+  const std::string index = (fs::path(a.dir) / "index.html").string();
+  write_index_html(index, report);
+  return index;
+}
+
+std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input_name,
+                              const Mesh& rest, const std::vector<Handle>& handles, const DeformOutcome& d) {
+  const std::string method = summary.value("method", std::string("given"));
   SectionInput in;
-  in.id = "";
   in.title = method_label(method) + " on " + input_title(input_name);
   in.description = std::string("Task ") + summary.value("task", std::string("deform")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
@@ -50,22 +102,12 @@ std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary
   in.measure = measure_description(summary.value("measure", std::string("fd")));
   in.rest = &rest;
   in.handles = handles;
-  MethodRun run = method_run(method, d);
+  const std::string measure = summary.value("measure", std::string("fd"));
+  MethodRun run = method_run(method, d, parse_measure(measure).value_or(Measure::Arap));
   run.view_name = "view";
   run.links.emplace_back("summary.json", "summary.json");
   in.runs.push_back(std::move(run));
-  ComparisonOptions o;
-  o.scale = a.scale;
-  o.picture_width = 520;
-  o.png_height = 380;
-  HtmlReport report;
-  report.title = "strictmin: " + in.title;
-  report.scale = a.scale;
-  report.sections.push_back(write_section(a.dir, in, o));
-  report.sections.back().id = "result";
-  const std::string index = (fs::path(a.dir) / "index.html").string();
-  write_index_html(index, report);
-  return index;
+  return write_report_folder(a, summary, in.title, {in});
 }
 
 std::string file_url(const std::string& path) {

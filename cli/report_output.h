@@ -9,6 +9,8 @@
 #include "strictmin/report/colour_map.h"
 #include "strictmin/report/comparison.h"
 #include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/interp.h"
+#include "strictmin/tasks/param.h"
 
 namespace strictmin::cli {
 
@@ -20,8 +22,18 @@ struct ReportArgs {
 // Adds --report DIR and --report-scale S to a task's command.
 void add_report_options(CLI::App& cmd, ReportArgs& args);
 
-// One method's run for a report section, from a deformation's outcome.
-MethodRun method_run(const std::string& method, const DeformOutcome& d);
+// One method's run for a report section, from a task's outcome. The lower bound is shown
+// only for the convex measure (fd): under arap / asap (and in interpolation) the solver's
+// bound holds for the last local-global step's fixed rotations, not for the measure.
+MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure measure);
+MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure measure);
+MethodRun method_run(const std::string& method, const InterpFrame& f);
+
+// A task's --report DIR: DIR/summary.json (the summary), then each section's pictures and
+// histogram (report/comparison.h; a section with id "" writes into DIR itself) and
+// DIR/index.html titled "strictmin: TITLE". Returns the path of index.html.
+std::string write_report_folder(const ReportArgs& args, const nlohmann::json& summary, const std::string& title,
+                                const std::vector<SectionInput>& sections);
 
 // deform --report DIR: DIR/summary.json (the summary), DIR/view.svg (planar) or
 // DIR/view.png (tets), DIR/input.svg|png, DIR/histogram.svg and DIR/index.html.

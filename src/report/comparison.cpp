@@ -56,6 +56,7 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
   out.title = in.title;
   out.description = in.description;
   out.measure = in.measure;
+  out.alternatives = in.alternatives;
 
   double scale = o.scale;
   if (!(scale > 0)) {

@@ -116,7 +116,8 @@ void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
   const bool ok = m.status == "solved";
   h << "<tr><td>status</td><td class=\"v " << (ok ? "ok" : "warn") << "\">" << escape(m.status) << "</td></tr>\n";
   h << "</table>\n";
-  if (!m.message.empty()) h << "<div class=\"caption warn\">" << escape(m.message) << "</div>\n";
+  if (!m.message.empty())
+    h << "<div class=\"caption" << (ok ? "" : " warn") << "\">" << escape(m.message) << "</div>\n";
   if (!m.links.empty()) {
     h << "<div class=\"links\">";
     for (std::size_t i = 0; i < m.links.size(); ++i)
@@ -275,7 +276,8 @@ std::string index_html(const HtmlReport& r) {
     h << "</p>\n";
   }
   for (const auto& s : r.sections) {
-    const double kstar = least_maximum(s);
+    // The least maximum shown is a reference only among rival maps of one problem.
+    const double kstar = s.alternatives ? least_maximum(s) : std::numeric_limits<double>::quiet_NaN();
     h << "<section id=\"" << escape(s.id) << "\">\n<h2>" << escape(s.title) << "</h2>\n";
     if (!s.description.empty()) h << "<p>" << escape(s.description) << "</p>\n";
     if (!one_scale) {
@@ -296,9 +298,9 @@ std::string index_html(const HtmlReport& r) {
       h << "<figure><img src=\"" << escape(s.histogram) << "\" alt=\"distortion histogram\"><figcaption>Distortion "
         << "(" << escape(s.measure) << ") on the vertical axis, with the colour scale beside it; the share of the "
         << "area in each distortion bin on the horizontal axis, on a log scale (each grid line is ten times the "
-        << "previous). " << (s.methods.size() == 1 ? "Bars in the colours of the picture" : "One outline per method")
-        << "; a dashed line marks " << (s.methods.size() == 1 ? "the" : "each method's") << " maximum.</figcaption></figure>\n";
-    write_notes(h, s, kstar);
+        << "previous). " << (s.methods.size() == 1 ? "Bars in the colours of the picture" : "One outline per map")
+        << "; a dashed line marks " << (s.methods.size() == 1 ? "the" : "each map's") << " maximum.</figcaption></figure>\n";
+    if (s.alternatives) write_notes(h, s, kstar);
     h << "</div>\n</section>\n";
   }
   if (!r.footer.empty()) h << "<footer>" << escape(r.footer) << "</footer>\n";

@@ -216,6 +216,7 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
   } else {
     out.mesh.V = X;
   }
+  out.weights = p.weights;
   out.stats = distortion_stats(out.result.distortion, p.weights);
   if (kind_ != InterpKind::Surface)
     for (int e = 0; e < p.num_elements(); ++e) out.stats.flipped += is_flipped(p.jacobian(e, X)) ? 1 : 0;

@@ -74,6 +74,35 @@ class Interp(unittest.TestCase):
             self.assertEqual(len(got), len(want))
             self.assertLess(max(abs(a - b) for g, w in zip(got, want) for a, b in zip(g, w)), 1e-5)
 
+    def test_report(self):
+        rep = os.path.join(self.dir, "rep")
+        p = run("interp", self.src, self.dst, "--t", "0.25,0.5,0.75", "--method", "linf", "--report", rep,
+                "--summary", os.path.join(self.dir, "s.json"), check_code=0)
+        self.assertIn("report: file://", p.stderr)
+        with open(os.path.join(rep, "summary.json")) as f:
+            s = json.load(f)
+        self.assertEqual([f["t"] for f in s["frames"]], [0.25, 0.5, 0.75])
+        with open(os.path.join(self.dir, "s.json")) as f:
+            self.assertEqual(json.load(f)["frames"][1]["max_distortion"], s["frames"][1]["max_distortion"])
+        for name in ("input.svg", "histogram.svg", "t0.25.svg", "t0.5.svg", "t0.75.svg"):
+            path = os.path.join(rep, name)
+            self.assertTrue(os.path.exists(path), name)
+            with open(path) as f:
+                self.assertIn("<svg", f.read(200))
+        with open(os.path.join(rep, "index.html")) as f:
+            html = f.read()
+        for label in ("t = 0.25", "t = 0.5", "t = 0.75", "src.obj", "dst.obj"):
+            self.assertIn(label, html)
+        # Frames are a sequence, not rival maps: no strict-order verdicts between them.
+        self.assertNotIn("Strict order", html)
+        # The colour scale is automatic for frames (not the fixed 0.6 of deform and param).
+        self.assertNotIn("red = 0.6 ", html)
+        self.assertRegex(html, r"red = 0\.00\d+ and above")
+        # The middle frame is the most distorted, and its maximum is printed on its card.
+        mid = s["frames"][1]["max_distortion"]
+        self.assertGreater(mid, 0)
+        self.assertGreaterEqual(mid, s["frames"][0]["max_distortion"] - 1e-9)
+
     def test_mismatched_connectivity(self):
         other = bar_obj(os.path.join(self.dir, "other.obj"), 0, nx=21)
         p = run("interp", self.src, other, "--t", "0.5", check_code=1)
@@ -91,10 +120,13 @@ class Interp(unittest.TestCase):
         if not os.path.exists(rest):
             self.skipTest("no shared data")
         prefix = os.path.join(self.dir, "tetbar")
+        rep = os.path.join(self.dir, "rep")
         s = json.loads(run("interp", rest, os.path.join(DATA, "interp", "tetbar_init.mesh"), "--t", "0.5",
-                           "-o", prefix, "--summary", "-", "--quiet", check_code=0).stdout)
+                           "-o", prefix, "--summary", "-", "--quiet", "--report", rep, check_code=0).stdout)
         self.assertEqual(s["kind"], "tets")
         self.assertTrue(os.path.exists(prefix + "_0.5.mesh"))
+        with open(os.path.join(rep, "t0.5.png"), "rb") as f:  # tet boundaries are drawn as PNG
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
 
 if __name__ == "__main__":

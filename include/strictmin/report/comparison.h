@@ -39,6 +39,8 @@ struct SectionInput {
   std::vector<Handle> handles; // drawn on the input picture (2D): fixed as dots, moved as arrows
   std::string measure = "field deviation \u2016J \u2212 I\u2016";
   std::vector<MethodRun> runs;
+  bool alternatives = true;    // the runs are rival maps of one problem (notes and strict-order verdicts
+                               // compare them); false for a sequence such as interpolation frames
 };
 
 struct ComparisonOptions {

@@ -41,6 +41,7 @@ struct ReportSection {
   double scale = std::numeric_limits<double>::quiet_NaN();  // its colour scale; NaN: the report's
   std::string measure = "field deviation \u2016J \u2212 I\u2016";
   std::vector<MethodEntry> methods;
+  bool alternatives = true;  // rival maps of one problem: compare them (notes, verdicts); false: a sequence
 };
 
 struct HtmlReport {

@@ -37,6 +37,7 @@ struct InterpFrame {
   Result result;            // positions (#V by image_dim), distortion ||J - Q Y(t)||, status, history
   Mesh mesh;                // the source mesh with the interpolated positions
   DistortionStats stats;    // of result.distortion; flipped: det J <= 0 (planar and tets only)
+  Eigen::VectorXd weights;  // #E source areas / volumes (the weights of stats)
 };
 
 class Interpolator {
