@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "report_output.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/tasks/map_distortion.h"
@@ -13,7 +14,46 @@ namespace {
 struct EvalArgs {
   std::string rest, mapped, measure = "auto", output;
   OutputOptions out;
+  ReportArgs report;
 };
+
+// The map as a report draws it: a deformation is the mapped mesh itself; a parametrization
+// is REST carrying the map as UVs (from MAPPED's vt, or from its planar positions).
+Mesh report_mesh(const Mesh& rest, const Mesh& mapped, bool parametrization) {
+  if (!parametrization) return mapped;
+  Mesh m = rest;
+  if (mapped.has_uv()) {
+    m.UV = mapped.UV;
+    m.FUV = mapped.FUV;
+  } else {
+    m.UV = mapped.V.leftCols(2);
+    m.FUV = rest.F;
+  }
+  return m;
+}
+
+// eval --report DIR: the given map's card (no solver: no bound, time or iterations).
+std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, const Mesh& rest, const Mesh& mapped,
+                              bool parametrization, const MapDistortion& d) {
+  SectionInput in;
+  in.title = "The map " + input_title(a.mapped.empty() ? a.rest : a.mapped) + " of " + input_title(a.rest);
+  in.description = "Task eval, " + summary.value("map_kind", std::string("deformation")) + ", measure " +
+                   summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
+                   " elements, " + std::to_string(d.stats.flipped) + " flipped.";
+  in.measure = measure_description(summary.value("measure", std::string("fd")));
+  in.rest = &rest;
+  MethodRun run;
+  run.method = "given";
+  run.label = "given map";
+  run.mapped = report_mesh(rest, mapped, parametrization);
+  run.distortion = d.distortion;
+  run.weights = d.weights;
+  run.flipped = d.stats.flipped;
+  run.view_name = "view";
+  run.links.emplace_back("summary.json", "summary.json");
+  in.runs.push_back(std::move(run));
+  return write_report_folder(a.report, summary, in.title, {in});
+}
 
 int run_eval(const EvalArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -61,6 +101,8 @@ int run_eval(const EvalArgs& a) {
   s["status"] = "solved";
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.distortion);
+  if (!a.report.dir.empty())
+    progress(a.out, "report: " + file_url(write_eval_report(a, s, rest, mapped, parametrization, d)));
   progress(a.out, "eval (" + measure_name(*measure) + "): max " + std::to_string(d.stats.max) + ", L2 " +
                       std::to_string(d.stats.l2) + ", " + std::to_string(d.stats.flipped) + " flipped of " +
                       std::to_string(d.stats.elements));
@@ -82,6 +124,7 @@ void add_eval_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Write the mesh with per-element distortion (.ply: 'quality')");
   add_output_options(*cmd, args->out);
+  add_report_options(*cmd, args->report);
   cmd->callback([args, &exit_code] { exit_code = run_eval(*args); });
 }
 

@@ -147,6 +147,32 @@ class Eval(unittest.TestCase):
         s = json.loads(run("eval", obj, "--measure", "asap", "--summary", "-", "-q", check_code=0).stdout)
         self.assertAlmostEqual(s["max_distortion"], 0.0, places=12)
 
+    def test_report_of_a_deformation_and_of_a_parametrization(self):
+        rest = write(os.path.join(self.dir, "rest.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n")
+        mapped = write(os.path.join(self.dir, "mapped.obj"), "v 0 0 0\nv 2 0 0\nv 2 0.5 0\nv 0 0.5 0\nf 1 2 3\nf 1 3 4\n")
+        rep = os.path.join(self.dir, "rep")
+        p = run("eval", rest, mapped, "--measure", "qc", "--report", rep, check_code=0)
+        self.assertIn("report: file://", p.stderr)
+        with open(os.path.join(rep, "summary.json")) as f:
+            self.assertAlmostEqual(json.load(f)["max_distortion"], 4.0, places=12)
+        for name in ("input.svg", "view.svg", "histogram.svg"):
+            self.assertTrue(os.path.exists(os.path.join(rep, name)), name)
+        with open(os.path.join(rep, "index.html")) as f:
+            html = f.read()
+        self.assertIn("given map", html)
+        self.assertIn("mapped.obj", html)
+        self.assertNotIn("certified lower bound", html)  # a given map has no solver bound
+        # A UV map: the surface view, its UV layout and checkerboard.
+        c, sn = math.cos(math.pi / 3), math.sin(math.pi / 3)
+        obj = write(os.path.join(self.dir, "uv.obj"), f"v 0 0 0\nv 1 0 0\nv 1 {c} {sn}\nv 0 {c} {sn}\n"
+                    "vt 0 0\nvt 1.5 0\nvt 1.5 1.5\nvt 0 1.5\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+        rep = os.path.join(self.dir, "uvrep")
+        run("eval", obj, "--report", rep, "-q", check_code=0)
+        pictures = sorted(os.listdir(rep))
+        self.assertIn("view.png", pictures)
+        self.assertTrue(any("uv" in n for n in pictures), pictures)
+        self.assertTrue(any("checker" in n for n in pictures), pictures)
+
     def test_flipped_elements_are_counted(self):
         rest = write(os.path.join(self.dir, "rest.obj"), "v 0 0\nv 1 0\nv 0 1\nv 1 1\nf 1 2 3\nf 2 4 3\n")
         mapped = write(os.path.join(self.dir, "flip.obj"), "v 0 0\nv 1 0\nv 0 1\nv -1 -1\nf 1 2 3\nf 2 4 3\n")
