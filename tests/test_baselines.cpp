@@ -84,8 +84,8 @@ TEST(Lp, AffineHandlesGiveTheAffineMap) {
 // Paper Figure 13 / Section 6: L_p minimizers approach the strict minimizer as p grows
 // (Descloux 1963), first at the top levels. A 16 x 4 bar with random rotation targets (so
 // its levels are distinct), left end fixed, right end turned; the reference is the direct
-// algorithm with delta_k = 1e-4 down to k_min = 0 (exact stops at its sixth level on this
-// problem with "no essential element found": an open robustness problem of exact). Measured: the largest difference between the sorted
+// algorithm with delta_k = 1e-4 down to k_min = 0 (exact completes on this problem too, but
+// its lower levels are ill-conditioned: docs/strict.md). Measured: the largest difference between the sorted
 // distortion vectors over the top quarter of the elements. As in the paper: the maximum
 // approaches the strict minimizer's from above for every p (4 ... 64), the top quarter
 // follows up to p = 32 (within 2% of the top level there), and beyond it the L_p map piles

@@ -268,6 +268,59 @@ TEST(Linf, FixedBoundsAreMetAndLowerTheRest) {
               r2.lower_bound, r2.iterations);
 }
 
+// The dual multipliers of the certificate: non-negative, summing to 1 over the free
+// elements, small where an element is well below k (complementary slackness), and the
+// weak-duality inequality sum lambda_T D_T(x) + sum_bounded lambda_T (D_T(x) - k_T) >= bound
+// holds for any map x, here random perturbations of the optimum and the L2 map.
+TEST(Linf, MultipliersCertifyTheBoundForEveryMap) {
+  const Problem p = figure2_problem(10, 0.15);
+  const Result r1 = solve_linf(p);
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  const double k1 = r1.distortion.maxCoeff();
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (r1.distortion[e] >= k1 - 1e-6) o.element_bounds[e] = k1 * 1.02;
+  for (const LinfOptions& options : {LinfOptions{}, o}) {
+    const Result r = solve_linf(p, options);
+    ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
+    ASSERT_EQ(r.multipliers.size(), p.num_elements());
+    const auto bounded = [&](int e) { return options.element_bounds.size() > 0 && options.element_bounds[e] >= 0; };
+    double sum_free = 0, k = 0;
+    for (int e = 0; e < p.num_elements(); ++e) {
+      EXPECT_GE(r.multipliers[e], 0.0) << e;
+      if (!bounded(e)) {
+        sum_free += r.multipliers[e];
+        k = std::max(k, r.distortion[e]);
+      }
+    }
+    EXPECT_NEAR(sum_free, 1.0, 1e-12);
+    EXPECT_LE(k - r.lower_bound, 1e-8 * std::max(1.0, k));
+    for (int e = 0; e < p.num_elements(); ++e) {
+      if (!bounded(e) && r.distortion[e] < k - 1e-2) {
+        EXPECT_LT(r.multipliers[e], 1e-4) << e;
+      }
+    }
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.05);
+    const Eigen::VectorXd x0 = p.free_dofs(r.positions);
+    std::vector<Eigen::VectorXd> maps{x0, p.free_dofs(solve_l2(p).positions)};
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::VectorXd x = x0;
+      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += noise(rng);
+      maps.push_back(x);
+    }
+    for (const Eigen::VectorXd& x : maps) {
+      const Eigen::MatrixXd X = p.with_free_dofs(x);
+      double lhs = 0;
+      for (int e = 0; e < p.num_elements(); ++e) {
+        const double d = (p.jacobian(e, X) - p.target(e)).norm();
+        lhs += r.multipliers[e] * (bounded(e) ? d - options.element_bounds[e] : d);
+      }
+      EXPECT_GE(lhs, r.lower_bound - 1e-12);
+    }
+  }
+}
+
 TEST(Linf, InfeasibleBoundsAreReportedWithTheAmount) {
   // Every element bounded by 0.05: the centre moves 0.2 while the boundary (0.5 away) stays,
   // so |J - I| >= 0.4 somewhere. Phase 1 certifies it.

@@ -159,6 +159,7 @@ struct MainSolve {
   socp::IpmOutcome outcome;
   double last_progress_gap = kInf;
   int last_progress_iteration = 0;
+  Eigen::VectorXd multipliers;  // per element cone, of the best certificate
   bool stalled = false;
 };
 
@@ -314,7 +315,12 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.k = k;
       ms.x = s.x;
     }
-    ms.lower_bound = std::max(ms.lower_bound, socp::certified_lower_bound(prog, ls, s.z, s.y));
+    Eigen::VectorXd lambda;
+    const double lb = socp::certified_lower_bound(prog, ls, s.z, s.y, &lambda);
+    if (lb > ms.lower_bound) {
+      ms.lower_bound = lb;
+      ms.multipliers = std::move(lambda);
+    }
     IterationRecord rec;
     rec.iteration = info.iteration;
     rec.max_distortion = k;
@@ -344,6 +350,10 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   total_iterations += ms.outcome.iterations;
   result.iterations = total_iterations;
   result.lower_bound = std::min(ms.lower_bound, ms.k);
+  if (ms.multipliers.size() > 0) {
+    result.multipliers = Eigen::VectorXd::Zero(E);
+    for (size_t i = 0; i < elems.size(); ++i) result.multipliers[elems[i]] = ms.multipliers[static_cast<Eigen::Index>(i)];
+  }
   const double gap = ms.k - ms.lower_bound;
   const double rel_gap = std::isfinite(gap) ? gap / std::max(1.0, std::abs(ms.k)) : kInf;
   switch (ms.outcome.status) {

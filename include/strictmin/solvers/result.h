@@ -27,6 +27,13 @@ struct Result {
   std::string message;        // why, when status is not Solved
   int iterations = 0;
   double lower_bound = std::numeric_limits<double>::quiet_NaN();  // no map does better (linf)
+  // linf: per element, the dual multiplier lambda_T of its constraint in the certificate of
+  // lower_bound (0 for elements with every vertex fixed); over the free elements they sum to
+  // 1, and every map x meeting the fixed bounds k_T has
+  //   sum_free lambda_T D_T(x) + sum_bounded lambda_T (D_T(x) - k_T) >= lower_bound,
+  // so a free element with lambda_T > 0 cannot drop below k by more than
+  // (k - lower_bound) / lambda_T while the others stay at most k (strict_exact.cpp).
+  Eigen::VectorXd multipliers;
   std::vector<IterationRecord> history;
   double time_s = 0;
   bool ok() const { return status == SolveStatus::Solved; }

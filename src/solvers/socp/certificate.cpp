@@ -51,7 +51,7 @@ Eigen::VectorXd WeightedLeastSquares::minimizer() const {
 }
 
 double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& ls, const Eigen::VectorXd& z,
-                             const Eigen::VectorXd& y) {
+                             const Eigen::VectorXd& y, Eigen::VectorXd* multipliers) {
   constexpr double minus_inf = -std::numeric_limits<double>::infinity();
   if (!p.has_k || p.has_quad() || !ls.ok()) return minus_inf;
   const int tt = p.t(), E = p.num_element_cones();
@@ -68,12 +68,14 @@ double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& l
     delta.setZero(static_cast<Eigen::Index>(E) * tt);
   }
   double objective = 0, normalizer = 0;
+  if (multipliers) multipliers->resize(E);
   for (int i = 0; i < E; ++i) {
     const Eigen::Index o = p.cone_offset(i);
     const auto d = delta.segment(static_cast<Eigen::Index>(i) * tt, tt);
     const auto tail = z.segment(o + 1, tt);
     // Head raised to keep the corrected point in the cone (also covers round-off in z).
     const double head = std::max(z[o], tail.norm()) + d.norm();
+    if (multipliers) (*multipliers)[i] = head;
     objective += -p.head_b[i] * head + p.h.segment(static_cast<Eigen::Index>(i) * tt, tt).dot(tail + d);
     normalizer += p.head_a[i] * head;
   }
@@ -84,6 +86,7 @@ double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& l
   }
   if (p.num_eq() > 0) objective += p.beq.dot(y);
   if (!(normalizer > 0) || !std::isfinite(objective)) return minus_inf;
+  if (multipliers) *multipliers /= normalizer;
   return p.c_k * objective / normalizer;
 }
 

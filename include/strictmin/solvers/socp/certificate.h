@@ -35,8 +35,11 @@ class WeightedLeastSquares {
 };
 
 // Certified lower bound on the optimal k of `p` (c_k = 1, no quadratic objective) from any
-// z strictly inside the cones and any y. -inf when it cannot be formed.
+// z strictly inside the cones and any y. -inf when it cannot be formed. With `multipliers`,
+// also the corrected dual's heads, one per element cone, normalised so that
+// sum_i head_a_i * lambda_i = 1: for every x meeting the bounded cones,
+// sum_i lambda_i (D_i(x) - head_b_i) >= bound (the weak-duality inequality behind the bound).
 double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& ls, const Eigen::VectorXd& z,
-                             const Eigen::VectorXd& y);
+                             const Eigen::VectorXd& y, Eigen::VectorXd* multipliers = nullptr);
 
 }  // namespace strictmin::socp
