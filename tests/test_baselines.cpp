@@ -14,6 +14,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/lp.h"
 #include "strictmin/solvers/strict.h"
+#include "test_meshes.h"
 
 using namespace strictmin;
 
@@ -91,19 +92,7 @@ TEST(Lp, AffineHandlesGiveTheAffineMap) {
 // follows up to p = 32 (within 2% of the top level there), and beyond it the L_p map piles
 // elements up just under the maximum and drifts away again (p = 64 here; not asserted).
 TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
-  const Mesh mesh = make_grid(16, 4, 4.0, 1.0);
-  Problem p = make_problem(mesh);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> angle(-0.4, 0.4);
-  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, Eigen::Rotation2Dd(angle(rng)).toRotationMatrix());
-  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.5).toRotationMatrix();
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v).transpose();
-    if (x.x() == 0.0) h.push_back({v, x});
-    if (x.x() == 4.0) h.push_back({v, Eigen::Vector2d(3.6, 0.8) + turn * (x - Eigen::Vector2d(4.0, 0.5))});
-  }
-  p.fix(h);
+  const Problem p = test_support::random_target_bar();
   DirectOptions direct;
   direct.delta_k = 1e-4;
   direct.k_min = 0;

@@ -17,6 +17,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/strict.h"
+#include "test_meshes.h"
 
 using namespace strictmin;
 
@@ -135,19 +136,7 @@ TEST(Direct, IsLessDistortingThanLinfAndStopsAtKMin) {
 // found"; the level's own dual certificate now always names one. Checked: it completes, its
 // levels decrease, and the top values agree with direct at a finer delta-k to 1e-4.
 TEST(Exact, CompletesOnABarWithRandomTargets) {
-  const Mesh mesh = make_grid(16, 4, 4.0, 1.0);
-  Problem p = make_problem(mesh);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> angle(-0.4, 0.4);
-  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, Eigen::Rotation2Dd(angle(rng)).toRotationMatrix());
-  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.5).toRotationMatrix();
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const Eigen::Vector2d x = mesh.V.row(v).transpose();
-    if (x.x() == 0.0) h.push_back({v, x});
-    if (x.x() == 4.0) h.push_back({v, Eigen::Vector2d(3.6, 0.8) + turn * (x - Eigen::Vector2d(4.0, 0.5))});
-  }
-  p.fix(h);
+  const Problem p = test_support::random_target_bar();
   ExactOptions eo;
   eo.tolerance = 1e-4;
   const Result exact = solve_exact(p, eo);

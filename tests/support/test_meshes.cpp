@@ -1,1 +1,28 @@
-// shared test helpers
+#include "test_meshes.h"
+
+#include <Eigen/Geometry>
+#include <random>
+#include <vector>
+
+#include "strictmin/mesh/generators.h"
+
+namespace strictmin::test_support {
+
+Problem random_target_bar() {
+  const Mesh mesh = make_grid(16, 4, 4.0, 1.0);
+  Problem p = make_problem(mesh);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> angle(-0.4, 0.4);
+  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, Eigen::Rotation2Dd(angle(rng)).toRotationMatrix());
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.5).toRotationMatrix();
+  std::vector<Handle> h;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector2d x = mesh.V.row(v).transpose();
+    if (x.x() == 0.0) h.push_back({v, x});
+    if (x.x() == 4.0) h.push_back({v, Eigen::Vector2d(3.6, 0.8) + turn * (x - Eigen::Vector2d(4.0, 0.5))});
+  }
+  p.fix(h);
+  return p;
+}
+
+}  // namespace strictmin::test_support

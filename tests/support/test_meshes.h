@@ -1,1 +1,12 @@
 #pragma once
+// Test problems shared by several test files.
+#include "strictmin/problem/problem.h"
+
+namespace strictmin::test_support {
+
+// A 4 x 1 bar of 16 x 4 grid cells (128 triangles) with random rotation targets (angles in
+// [-0.4, 0.4], seed 3), so that its strict-minimizer levels are distinct; the left end is
+// fixed, the right end turned by 0.5 rad and moved. Used for the L_p and exact tests.
+Problem random_target_bar();
+
+}  // namespace strictmin::test_support
