@@ -57,4 +57,25 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 int exit_code_for(SolveStatus status) { return status == SolveStatus::Solved ? kExitSuccess : kExitNotConverged; }
 
+void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
+  s["max_distortion"] = number_or_null(stats.max);
+  s["max_element"] = stats.max_element;
+  s["l2_distortion"] = number_or_null(stats.l2);
+  s["mean_distortion"] = number_or_null(stats.mean);
+  s["flipped"] = stats.flipped;
+}
+
+void add_status_summary(nlohmann::json& s, const Result& r) {
+  s["status"] = status_name(r.status);
+  if (!r.message.empty()) s["message"] = r.message;
+}
+
+void add_local_global_summary(nlohmann::json& s, const Result& r) {
+  s["local_global_iterations"] = r.iterations;
+  s["stop_reason"] = r.message;
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& h : r.history) history.push_back({{"iteration", h.iteration}, {"max", h.max_distortion}});
+  s["history"] = history;
+}
+
 }  // namespace strictmin::cli

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "strictmin/report/stats.h"
 #include "strictmin/solvers/result.h"
 
 namespace strictmin::cli {
@@ -34,6 +35,16 @@ void write_outputs(const OutputOptions& out, const nlohmann::json& summary, cons
 
 // A JSON number, or null for a non-finite value (an infinite distortion, no bound).
 nlohmann::json number_or_null(double x);
+
+// The distortion keys of every summary: max_distortion, max_element, l2_distortion,
+// mean_distortion, flipped.
+void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats);
+
+// status, and message when there is one.
+void add_status_summary(nlohmann::json& s, const Result& r);
+
+// arap / asap: local_global_iterations, stop_reason and history (the maximum per iteration).
+void add_local_global_summary(nlohmann::json& s, const Result& r);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);

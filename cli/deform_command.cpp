@@ -82,21 +82,10 @@ int run_deform(const DeformArgs& a) {
   s["vertices"] = mesh.num_vertices();
   s["handles"] = handles.size();
   s["dimension"] = d.problem.image_dim;
-  s["max_distortion"] = number_or_null(d.measured.stats.max);
-  s["max_element"] = d.measured.stats.max_element;
-  s["l2_distortion"] = number_or_null(d.measured.stats.l2);
-  s["mean_distortion"] = number_or_null(d.measured.stats.mean);
-  s["flipped"] = d.measured.stats.flipped;
-  s["status"] = status_name(d.result.status);
-  if (!d.result.message.empty()) s["message"] = d.result.message;
+  add_distortion_summary(s, d.measured.stats);
+  add_status_summary(s, d.result);
   add_solver_summary(s, options.solver, d.result);
-  if (options.measure == Measure::Arap || options.measure == Measure::Asap) {
-    s["local_global_iterations"] = d.result.iterations;
-    s["stop_reason"] = d.result.message;
-    nlohmann::json history = nlohmann::json::array();
-    for (const auto& r : d.result.history) history.push_back({{"iteration", r.iteration}, {"max", r.max_distortion}});
-    s["history"] = history;
-  }
+  if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
   s["solver_time_s"] = d.result.time_s;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);

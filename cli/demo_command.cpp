@@ -88,13 +88,8 @@ nlohmann::json run_summary(const std::string& example, const SolverOptions& opti
   s["vertices"] = d.deformed.num_vertices();
   s["handles"] = handles;
   s["dimension"] = d.problem.image_dim;
-  s["max_distortion"] = number_or_null(d.measured.stats.max);
-  s["max_element"] = d.measured.stats.max_element;
-  s["l2_distortion"] = number_or_null(d.measured.stats.l2);
-  s["mean_distortion"] = number_or_null(d.measured.stats.mean);
-  s["flipped"] = d.measured.stats.flipped;
-  s["status"] = status_name(d.result.status);
-  if (!d.result.message.empty()) s["message"] = d.result.message;
+  add_distortion_summary(s, d.measured.stats);
+  add_status_summary(s, d.result);
   add_solver_summary(s, options, d.result);
   s["solver_time_s"] = d.result.time_s;
   return s;

@@ -93,11 +93,7 @@ int run_eval(const EvalArgs& a) {
   s["measure"] = measure_name(*measure);
   s["elements"] = rest.num_elements();
   s["vertices"] = rest.num_vertices();
-  s["max_distortion"] = number_or_null(d.stats.max);
-  s["max_element"] = d.stats.max_element;
-  s["l2_distortion"] = number_or_null(d.stats.l2);
-  s["mean_distortion"] = number_or_null(d.stats.mean);
-  s["flipped"] = d.stats.flipped;
+  add_distortion_summary(s, d.stats);
   s["status"] = "solved";
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.distortion);

@@ -144,18 +144,11 @@ int run_interp(const InterpArgs& a) {
     nlohmann::json j;
     j["t"] = t;
     j["output"] = path;
-    j["max_distortion"] = number_or_null(f.stats.max);
-    j["max_element"] = f.stats.max_element;
-    j["l2_distortion"] = number_or_null(f.stats.l2);
-    j["mean_distortion"] = number_or_null(f.stats.mean);
-    j["flipped"] = interp.kind() == InterpKind::Surface ? nlohmann::json(nullptr) : nlohmann::json(f.stats.flipped);
-    j["status"] = status_name(f.result.status);
-    if (!f.result.message.empty()) j["message"] = f.result.message;
+    add_distortion_summary(j, f.stats);
+    if (interp.kind() == InterpKind::Surface) j["flipped"] = nullptr;  // no orientation to flip
+    add_status_summary(j, f.result);
     add_solver_summary(j, options.solver, f.result);
-    j["local_global_iterations"] = f.result.iterations;
-    nlohmann::json history = nlohmann::json::array();
-    for (const auto& r : f.result.history) history.push_back({{"iteration", r.iteration}, {"max", r.max_distortion}});
-    j["history"] = history;
+    add_local_global_summary(j, f.result);
     j["time_s"] = seconds_since(tf);
     frames.push_back(j);
     last_distortion = f.result.distortion;

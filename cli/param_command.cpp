@@ -92,24 +92,13 @@ int run_param(ParamArgs a) {
   s["elements"] = mesh.num_elements();
   s["vertices"] = mesh.num_vertices();
   s["boundary_vertices"] = p.boundary.size();
-  s["max_distortion"] = number_or_null(p.measured.stats.max);
-  s["max_element"] = p.measured.stats.max_element;
-  s["l2_distortion"] = number_or_null(p.measured.stats.l2);
-  s["mean_distortion"] = number_or_null(p.measured.stats.mean);
-  s["flipped"] = p.measured.stats.flipped;
+  add_distortion_summary(s, p.measured.stats);
   s["flips"] = p.flips;
   s["boundary_overlap"] = p.boundary_overlap;
-  s["status"] = status_name(p.result.status);
-  if (!p.result.message.empty()) s["message"] = p.result.message;
+  add_status_summary(s, p.result);
   if (!options.init_only) {
     add_solver_summary(s, options.solver, p.result);
-    if (options.measure != Measure::FieldDeviation) {
-      s["local_global_iterations"] = p.result.iterations;
-      s["stop_reason"] = p.result.message;
-      nlohmann::json history = nlohmann::json::array();
-      for (const auto& r : p.result.history) history.push_back({{"iteration", r.iteration}, {"max", r.max_distortion}});
-      s["history"] = history;
-    }
+    if (options.measure != Measure::FieldDeviation) add_local_global_summary(s, p.result);
   }
   s["init_time_s"] = p.init_time_s;
   s["solver_time_s"] = p.result.time_s;
