@@ -3,6 +3,7 @@
 // Readers only parse (indices are range-checked with the line number); validation is done
 // once by the caller. Not a public header.
 #include <Eigen/Core>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -25,6 +26,14 @@ struct SurfaceRef {
   const Eigen::MatrixXi* FUV = nullptr;
   const Eigen::VectorXd* quality = nullptr;
 };
+
+class ChunkWriter;  // text_parse.h
+
+// The vertex and face lines that OFF and PLY share: "x y z" per vertex (z = 0 for 2D
+// positions) and "3 a b c" per face, each with its newline; `after_face` (may be null) appends
+// what follows a face's indices on its line (PLY's quality).
+void append_vertex_and_face_lines(ChunkWriter& out, const SurfaceRef& s,
+                                  const std::function<void(std::string&, Eigen::Index)>& after_face);
 
 void write_obj(std::ostream& os, const SurfaceRef& surface);
 void write_off(std::ostream& os, const SurfaceRef& surface);

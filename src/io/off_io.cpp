@@ -111,14 +111,9 @@ Mesh read_off(std::string_view text, const std::string& name) {
   return mesh;
 }
 
-void write_off(std::ostream& os, const SurfaceRef& s) {
-  ChunkWriter out(os);
+void append_vertex_and_face_lines(ChunkWriter& out, const SurfaceRef& s,
+                                  const std::function<void(std::string&, Eigen::Index)>& after_face) {
   std::string& b = out.buffer();
-  b += "OFF\n";
-  append_number(b, static_cast<long>(s.V.rows()));
-  b += ' ';
-  append_number(b, static_cast<long>(s.F.rows()));
-  b += " 0\n";
   for (Eigen::Index i = 0; i < s.V.rows(); ++i) {
     for (Eigen::Index k = 0; k < 3; ++k) {
       if (k) b += ' ';
@@ -133,9 +128,21 @@ void write_off(std::ostream& os, const SurfaceRef& s) {
       b += ' ';
       append_number(b, s.F(f, k));
     }
+    if (after_face) after_face(b, f);
     b += '\n';
     out.maybe_flush();
   }
+}
+
+void write_off(std::ostream& os, const SurfaceRef& s) {
+  ChunkWriter out(os);
+  std::string& b = out.buffer();
+  b += "OFF\n";
+  append_number(b, static_cast<long>(s.V.rows()));
+  b += ' ';
+  append_number(b, static_cast<long>(s.F.rows()));
+  b += " 0\n";
+  append_vertex_and_face_lines(out, s, nullptr);
   out.flush();
 }
 

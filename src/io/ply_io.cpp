@@ -17,28 +17,14 @@ void write_ply(std::ostream& os, const SurfaceRef& s) {
   b += "\nproperty list uchar int vertex_indices\n";
   if (s.quality) b += "property float quality\n";
   b += "end_header\n";
-  for (Eigen::Index i = 0; i < s.V.rows(); ++i) {
-    for (Eigen::Index k = 0; k < 3; ++k) {
-      if (k) b += ' ';
-      append_number(b, k < s.V.cols() ? s.V(i, k) : 0.0);
-    }
-    b += '\n';
-    out.maybe_flush();
-  }
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    b += '3';
-    for (int k = 0; k < 3; ++k) {
-      b += ' ';
-      append_number(b, s.F(f, k));
-    }
-    if (s.quality) {
-      b += ' ';
+  std::function<void(std::string&, Eigen::Index)> quality;
+  if (s.quality)
+    quality = [&](std::string& line, Eigen::Index f) {
+      line += ' ';
       // Declared float: the shortest text of the float value.
-      append_number(b, static_cast<float>((*s.quality)(f)));
-    }
-    b += '\n';
-    out.maybe_flush();
-  }
+      append_number(line, static_cast<float>((*s.quality)(f)));
+    };
+  append_vertex_and_face_lines(out, s, quality);
   out.flush();
 }
 

@@ -128,8 +128,10 @@ inline std::string lowercase(std::string_view s) {
   return out;
 }
 
-// Shortest text that reads back to the same double (round trip), appended to `out`.
-inline void append_number(std::string& out, double value) {
+// Shortest text that reads back to the same double or float (round trip), appended to
+// `out` (float for PLY `float` properties).
+template <typename Real>
+inline void append_real(std::string& out, Real value) {
   char buffer[32];
   if (!std::isfinite(value)) {
     out += std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
@@ -138,17 +140,8 @@ inline void append_number(std::string& out, double value) {
   const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, ptr);
 }
-
-// Shortest text that reads back to the same float (for PLY `float` properties).
-inline void append_number(std::string& out, float value) {
-  char buffer[32];
-  if (!std::isfinite(value)) {
-    out += std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
-    return;
-  }
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, ptr);
-}
+inline void append_number(std::string& out, double value) { append_real(out, value); }
+inline void append_number(std::string& out, float value) { append_real(out, value); }
 
 inline void append_number(std::string& out, long value) {
   char buffer[24];
