@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "expect_input_error.h"
 #include "strictmin/io/handles_io.h"
 #include "strictmin/io/input_error.h"
 
@@ -11,15 +12,7 @@ using namespace strictmin;
 
 namespace {
 
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& words) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << words.front() << "')";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    for (const std::string& w : words) EXPECT_NE(message.find(w), std::string::npos) << "'" << w << "' not in: " << message;
-  }
-}
+using test_support::expect_input_error;
 
 void expect_bad(const std::string& text, const std::string& name, int dim, const std::vector<std::string>& words) {
   expect_input_error([&] { parse_handles(text, name, 10, dim); }, words);

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "expect_input_error.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
@@ -20,16 +21,7 @@ using namespace strictmin;
 
 namespace {
 
-// Runs `f`, expects an InputError whose message contains every one of `words`.
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& words) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << words.front() << "')";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    for (const std::string& w : words) EXPECT_NE(message.find(w), std::string::npos) << "'" << w << "' not in: " << message;
-  }
-}
+using test_support::expect_input_error;
 
 std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

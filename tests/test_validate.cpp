@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "expect_input_error.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
@@ -13,15 +14,7 @@ using namespace strictmin;
 
 namespace {
 
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& words) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << words.front() << "')";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    for (const std::string& w : words) EXPECT_NE(message.find(w), std::string::npos) << "'" << w << "' not in: " << message;
-  }
-}
+using test_support::expect_input_error;
 
 void expect_invalid(const Mesh& m, const std::vector<std::string>& words) {
   expect_input_error([&] { validate_mesh(m, "m.obj"); }, words);
