@@ -3,26 +3,11 @@ messages for bad input. Run by ctest with STRICTMIN_CLI pointing at the built to
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import unittest
 
-CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
-DATA = os.environ.get("STRICTMIN_SHARED_DATA", "")
-
-
-def run(*args, check_code=None):
-    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=120)
-    if check_code is not None and p.returncode != check_code:
-        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
-    return p
-
-
-def write(path, text):
-    with open(path, "w") as f:
-        f.write(text)
-    return path
+from cli_support import CLI, DATA, run, write
 
 
 SUMMARY_KEYS = {"task", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}

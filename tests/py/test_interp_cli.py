@@ -4,19 +4,10 @@ STRICTMIN_CLI pointing at the built tool."""
 import json
 import math
 import os
-import subprocess
 import tempfile
 import unittest
 
-CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
-DATA = os.environ.get("STRICTMIN_SHARED_DATA", "")
-
-
-def run(*args, check_code=None):
-    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
-    if check_code is not None and p.returncode != check_code:
-        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
-    return p
+from cli_support import CLI, DATA, run
 
 
 def bar_obj(path, turn, nx=20, ny=2):

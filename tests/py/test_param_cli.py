@@ -3,19 +3,11 @@ meshes that are not disks (exit 1). Run by ctest with STRICTMIN_CLI set."""
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import unittest
 
-CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
-
-
-def run(*args, check_code=None):
-    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
-    if check_code is not None and p.returncode != check_code:
-        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr}")
-    return p
+from cli_support import CLI, run
 
 
 def cap_obj(rings=5, sectors=16, max_polar=1.1, drop_fan=False):

@@ -4,18 +4,15 @@ at the built tool."""
 import json
 import os
 import re
-import subprocess
 import tempfile
 import unittest
 
-CLI = os.environ.get("STRICTMIN_CLI", "strictmin")
+import cli_support
+from cli_support import CLI
 
 
 def run(*args, cwd=None, check_code=0):
-    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300, cwd=cwd)
-    if check_code is not None and p.returncode != check_code:
-        raise AssertionError(f"exit {p.returncode} != {check_code}\nstdout: {p.stdout}\nstderr: {p.stderr[-3000:]}")
-    return p
+    return cli_support.run(*args, cwd=cwd, check_code=check_code)
 
 
 def read(path, mode="r"):
