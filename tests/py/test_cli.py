@@ -7,7 +7,7 @@ import sys
 import tempfile
 import unittest
 
-from cli_support import CLI, DATA, run, write
+from cli_support import DATA, run, write
 
 
 SUMMARY_KEYS = {"task", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}

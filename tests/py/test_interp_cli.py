@@ -7,7 +7,7 @@ import os
 import tempfile
 import unittest
 
-from cli_support import CLI, DATA, run
+from cli_support import DATA, run
 
 
 def bar_obj(path, turn, nx=20, ny=2):
