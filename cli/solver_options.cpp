@@ -30,6 +30,10 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
   g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum")
       ->capture_default_str();
   g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this")->capture_default_str();
+  g->add_option("--level-gap", a.level_gap,
+                "direct: relative gap at which the levels after the first stop (default -1: delta-k / 100; the "
+                "first level uses --gap)")
+      ->capture_default_str();
   g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this")
       ->capture_default_str();
 }
@@ -53,6 +57,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.relax.accept_tolerance = a.accept_tolerance;
   o.direct.delta_k = a.delta_k;
   o.direct.k_min = a.k_min;
+  o.direct.level_gap = a.level_gap;
   o.direct.linf = o.linf;
   o.exact.max_elements = a.exact_max_elements;
   o.exact.linf = o.linf;

@@ -26,6 +26,7 @@ struct SolverArgs {
   // direct, exact
   double delta_k = 1e-3;
   double k_min = 0.1;
+  double level_gap = -1;  // direct: relative gap of the levels after the first (-1: delta_k / 100)
   int exact_max_elements = 3000;
 };
 

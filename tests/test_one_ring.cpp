@@ -327,11 +327,7 @@ class Generator {
       const Vec<d> g = -inv.colwise().sum().transpose();     // gradient at the vertex
       Eigen::Matrix<double, d, d> M = -R;
       for (int c = 0; c < d; ++c) M += (E.col(c) + 0.3 * point()) * inv.row(c);
-      RingTerm<d> t;
-      t.a = g.squaredNorm();
-      t.centre = -M * g / t.a;
-      t.b = std::max(0.0, M.squaredNorm() - (M * g).squaredNorm() / t.a);
-      terms.push_back(t);
+      terms.push_back(ring_term<d>(M, g, 1.0 / g.squaredNorm()));
     }
     return terms;
   }

@@ -210,12 +210,9 @@ std::vector<RingTerm<d>> ring_terms(const Problem& p, const Eigen::MatrixXd& X, 
     for (int j = 0; j < p.corners(); ++j) {
       if (p.elements(e, j) != v) continue;
       const Eigen::VectorXd g = p.gradients.row(e * p.corners() + j).transpose();
-      const Eigen::MatrixXd M = p.jacobian(e, X) - p.target(e) - X.row(v).transpose() * g.transpose();
-      RingTerm<d> t;
-      t.a = g.squaredNorm();
-      t.centre = -M * g / t.a;
-      t.b = std::max(0.0, M.squaredNorm() - (M * g).squaredNorm() / t.a);
-      terms.push_back(t);
+      const Eigen::Matrix<double, d, d> M = p.jacobian(e, X) - p.target(e) - X.row(v).transpose() * g.transpose();
+      const Eigen::Matrix<double, d, 1> gd = g;
+      terms.push_back(ring_term<d>(M, gd, 1.0 / gd.squaredNorm()));
     }
   return terms;
 }

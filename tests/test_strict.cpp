@@ -160,6 +160,37 @@ TEST(Exact, CompletesOnABarWithRandomTargets) {
               exact.iterations, direct.iterations, a[0], b[0], a[20], b[20]);
 }
 
+// Levels after the first stop at the level gap (delta-k / 100 by default); the first keeps
+// the full accuracy of its certified bound. The top values agree with fully accurate levels
+// to within delta-k (the lower levels of this problem are ill-conditioned).
+TEST(Direct, LevelsAfterTheFirstStopAtTheLevelGap) {
+  const Problem p = test_support::random_target_bar();
+  DirectOptions o;
+  o.k_min = 0;
+  const Result loose = solve_direct(p, o);
+  ASSERT_TRUE(loose.ok()) << loose.message;
+  ASSERT_GE(loose.history.size(), 3u);
+  const auto relative_gap = [](const IterationRecord& r) {
+    return (r.max_distortion - r.lower_bound) / std::max(1.0, r.max_distortion);
+  };
+  EXPECT_LE(relative_gap(loose.history[0]), 1e-8);
+  for (size_t i = 1; i < loose.history.size(); ++i) EXPECT_LE(relative_gap(loose.history[i]), 1e-2 * o.delta_k) << i;
+  o.level_gap = 1e-8;
+  const Result tight = solve_direct(p, o);
+  ASSERT_TRUE(tight.ok()) << tight.message;
+  // This problem's lower levels are ill-conditioned (Exact.CompletesOnABarWithRandomTargets):
+  // compare the top values only, and that both are less distorting than L-infinity.
+  Eigen::VectorXd a = loose.distortion, b = tight.distortion;
+  std::sort(a.data(), a.data() + a.size(), std::greater<>());
+  std::sort(b.data(), b.data() + b.size(), std::greater<>());
+  EXPECT_NEAR(a[0], b[0], 1e-8);
+  for (int i = 0; i < 16; ++i) EXPECT_NEAR(a[i], b[i], o.delta_k) << "rank " << i;
+  const Result linf = solve_linf(p);
+  EXPECT_EQ(compare_strict(loose.distortion, linf.distortion, p.weights, o.delta_k).order, StrictOrder::Less);
+  std::printf("levels: %d (level gap delta-k / 100), %d (1e-8), in %.2f s and %.2f s\n", loose.iterations,
+              tight.iterations, loose.time_s, tight.time_s);
+}
+
 TEST(Exact, RefusesLargeMeshes) {
   Problem p = make_problem(make_grid(40, 40));
   p.fix({{0, Eigen::Vector2d(0, 0)}});

@@ -127,13 +127,7 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
         const Eigen::Map<const Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
         const double* G = &s.gradients[(e * (d + 1) + j) * (d + 1)];
         const Eigen::Map<const Vec<d>> g(G);
-        const double inv_a = G[d];
-        const Vec<d> Mg = M * g;
-        RingTerm<d>& t = sc.terms[k];
-        t.a = g.squaredNorm();
-        t.centre = -inv_a * Mg;
-        // b = ||M (I - g g^T / a)||^2: M on the complement of g, >= 0 without cancellation.
-        t.b = (M - (inv_a * Mg) * g.transpose()).squaredNorm();
+        sc.terms[k] = ring_term<d>(M, g, G[d]);
         sc.current[k] = M.squaredNorm();
         current = std::max(current, sc.current[k]);
       }

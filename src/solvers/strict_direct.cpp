@@ -33,9 +33,23 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
   Result out;
   double k = INFINITY;
   out.positions = options.start.size() ? options.start : p.positions;
+  Problem level = p;
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     linf.element_bounds = bounds;
-    Result r = options.level_solver ? options.level_solver(p, linf, out.positions) : solve_linf(p, linf);
+    if (step == 2) {
+      const double level_gap = options.level_gap >= 0 ? options.level_gap : 1e-2 * options.delta_k;
+      linf.gap_tolerance = std::max(linf.gap_tolerance, level_gap);
+      linf.acceptable_gap_tolerance = std::max(linf.acceptable_gap_tolerance, linf.gap_tolerance);
+    }
+    Result r;
+    if (options.level_solver) {
+      r = options.level_solver(p, linf, out.positions);
+    } else {
+      // Start from the previous level's map: it meets every fixed bound (they are widened to
+      // it below), so the solve needs no phase 1.
+      level.positions = out.positions;
+      r = solve_linf(level, linf);
+    }
     if (step == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
     out.distortion = r.distortion;

@@ -18,6 +18,20 @@ struct RingTerm {
   double b = 0;                         // b_T >= 0: the least squared distortion T can reach
 };
 
+// The term of an element whose deviation J_T - R_T is M + q g^T when its ring vertex moves
+// by q (g: that corner's gradient, inv_a = 1 / ||g||^2): a = ||g||^2, c = -M g / a, and
+// b = ||M (I - g g^T / a)||^2, M on the complement of g (>= 0 without cancellation).
+template <int d>
+inline RingTerm<d> ring_term(const Eigen::Matrix<double, d, d>& M, const Eigen::Matrix<double, d, 1>& g,
+                             double inv_a) {
+  const Eigen::Matrix<double, d, 1> Mg = M * g;
+  RingTerm<d> t;
+  t.a = g.squaredNorm();
+  t.centre = -inv_a * Mg;
+  t.b = (M - (inv_a * Mg) * g.transpose()).squaredNorm();
+  return t;
+}
+
 template <int d>
 struct RingSolution {
   Eigen::Matrix<double, d, 1> q;

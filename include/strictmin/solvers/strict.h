@@ -35,6 +35,11 @@ struct DirectOptions {
   double k_min = 0.1;
   int max_steps = 100000;
   LinfOptions linf;  // tolerances of every L-infinity solve (progress is not forwarded)
+  // Relative gap at which the levels after the first stop: elements are fixed within
+  // delta_k of a level, so its value is needed to a small fraction of delta_k only.
+  // Negative: delta_k / 100 (never finer than linf.gap_tolerance). The first level (the
+  // L-infinity optimum and its certified bound) always uses linf.gap_tolerance.
+  double level_gap = -1;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
   Eigen::MatrixXd start;     // map the first level starts from (default: problem.positions)
