@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "problems.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
@@ -29,32 +30,8 @@ using namespace strictmin;
 
 namespace {
 
-Problem square_problem(int cells) { return example_problem(make_square_example(cells, 0.2)); }
-
-Problem bar_problem(int n) {
-  const int nx = 4 * n, ny = n;
-  const Mesh mesh = make_grid(nx, ny, 4.0, 1.0);
-  Problem p = make_problem(mesh);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> angle(-0.5, 0.5);
-  for (int e = 0; e < p.num_elements(); ++e) {
-    const double a = angle(rng);
-    Eigen::Matrix2d R;
-    R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
-    p.set_target(e, R);
-  }
-  Eigen::Matrix2d R;
-  R << std::cos(0.6), -std::sin(0.6), std::sin(0.6), std::cos(0.6);
-  std::vector<Handle> handles;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const int i = v % (nx + 1);
-    const Eigen::Vector2d q = mesh.V.row(v).transpose();
-    if (i == 0) handles.push_back({v, q});
-    if (i == nx) handles.push_back({v, Eigen::Vector2d(3.5, 1.0) + R * (q - Eigen::Vector2d(4.0, 0.5))});
-  }
-  p.fix(handles);
-  return p;
-}
+using bench::bar_problem;
+using bench::square_problem;
 
 // STRICTMIN_LINF_VERBOSE=1|2 prints the solver's per-iteration lines and phase timers.
 LinfOptions bench_options() {
