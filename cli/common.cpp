@@ -51,10 +51,6 @@ void progress(const OutputOptions& out, const std::string& line) {
   if (!out.quiet) std::cerr << line << std::endl;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 int exit_code_for(SolveStatus status) { return status == SolveStatus::Solved ? kExitSuccess : kExitNotConverged; }
 
 void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {

@@ -9,6 +9,7 @@
 
 #include "strictmin/report/stats.h"
 #include "strictmin/solvers/result.h"
+#include "strictmin/solvers/timing.h"
 
 namespace strictmin::cli {
 
@@ -48,8 +49,6 @@ void add_local_global_summary(nlohmann::json& s, const Result& r);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);
-
-double seconds_since(std::chrono::steady_clock::time_point t0);
 
 int exit_code_for(SolveStatus status);
 

@@ -1,4 +1,5 @@
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/timing.h"
 
 #include <chrono>
 #include <cmath>
@@ -8,10 +9,6 @@
 
 namespace strictmin {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 int find_root(std::vector<int>& parent, int v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];

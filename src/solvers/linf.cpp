@@ -5,6 +5,7 @@
 //   4. min k s.t. D_T <= k (free), D_T <= k_T (bounded), k >= constant elements' D_T;
 //   5. optionally (Section 5.1 (a)) min sum A_T D_T^2 s.t. D_T <= k* (+ slack).
 #include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/timing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -24,10 +25,6 @@ namespace {
 
 using socp::ConeProgram;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string format(double v) {
   std::ostringstream os;

@@ -1,4 +1,5 @@
 #include "strictmin/solvers/local_global.h"
+#include "strictmin/solvers/timing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,10 +13,6 @@
 
 namespace strictmin {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Eigen::MatrixXd local_target(const Problem& p, int e, const Eigen::MatrixXd& J, const LocalGlobalOptions& o) {
   if (o.local == LocalStep::Similarity) return closest_similarity(J);

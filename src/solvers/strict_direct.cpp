@@ -4,13 +4,10 @@
 
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
+#include "strictmin/solvers/timing.h"
 
 namespace strictmin {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Elements with a vertex that is free: the others are constants of the problem.
 std::vector<char> movable_elements(const Problem& p) {

@@ -27,16 +27,9 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/strict.h"
+#include "strictmin/solvers/timing.h"
 
 namespace strictmin {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 Result solve_exact(const Problem& p, const ExactOptions& options) {
   if (p.num_elements() > options.max_elements)
     throw InputError("the exact strict minimizer needs up to one L-infinity solve per element and level; " +
