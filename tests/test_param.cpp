@@ -222,8 +222,8 @@ TEST(Param, RealDiskBimba) {
   check_real_disk(file, 30);
 }
 
-// Issue 6's claim on every disk mesh of the shared data (about 20 minutes on 2 cores, up to
-// 89k faces): run with STRICTMIN_LONG_TESTS=1. Ten local-global iterations per method.
+// Issue 6's claim on every disk mesh of the shared data (up to 89k faces; 63 minutes on 2
+// busy cores): run with STRICTMIN_LONG_TESTS=1. Ten local-global iterations per method.
 TEST(ParamLong, EveryDiskMesh) {
   if (!std::getenv("STRICTMIN_LONG_TESTS")) GTEST_SKIP() << "set STRICTMIN_LONG_TESTS=1 to run";
   const std::filesystem::path dir = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk";
