@@ -52,20 +52,21 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     out.distortion = r.distortion;
     if (r.status != SolveStatus::Solved) {
       // A level whose solve stopped short still leaves a feasible map. If its certified gap
-      // is far below delta_k (a tenth of it), the level is known well enough to fix elements
-      // within delta_k of it: go on, and say so. Otherwise stop with the solver's status.
+      // is well below delta_k (a quarter of it), the level is known well enough to fix
+      // elements within delta_k of it (the band is then off by at most a quarter of its
+      // width): go on, and say so. Otherwise stop with the solver's status.
       double reached = r.distortion.size() ? 0.0 : INFINITY;  // this level's k, over the free elements
       for (int e = 0; e < r.distortion.size(); ++e)
         if (movable[e] && bounds(e) < 0) reached = std::max(reached, r.distortion(e));
       const double gap = (reached - r.lower_bound) / std::max(1.0, std::abs(reached));
       const bool usable = r.status == SolveStatus::MaxIterations ||
                           (r.status == SolveStatus::NumericalError && r.positions.allFinite() &&
-                           std::isfinite(gap) && gap <= 0.1 * options.delta_k);
+                           std::isfinite(gap) && gap <= 0.25 * options.delta_k);
       if (!usable || r.status == SolveStatus::MaxIterations) out.status = r.status;
       if (!out.message.empty()) out.message += "; ";
       out.message += "direct step " + std::to_string(step) + ": " + r.message;
       if (usable && r.status == SolveStatus::NumericalError)
-        out.message += " (used: the certified gap is below delta_k / 10)";
+        out.message += " (used: the certified gap is below delta_k / 4)";
       if (!usable) break;
     }
     // The interior-point map meets the fixed bounds only to the solver's tolerance; widen
