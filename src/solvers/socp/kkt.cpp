@@ -10,6 +10,7 @@
 
 #include "strictmin/solvers/socp/ordering.h"
 #include "strictmin/solvers/socp/soc.h"
+#include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {
 namespace {
@@ -287,6 +288,7 @@ bool NormalEquations::factor(const Scaling& sc) {
   diag_saved_.resize(N);
   for (int d = 0; d < N; ++d) diag_saved_[d] = values[diagonal_[d]];
   bool ok = false;
+  SerialCholmodScope serial;  // sparse_cholesky.h: CHOLMOD's OpenMP loops cost more than they gain
   for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
     if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
     const double floor = 1e-3 * delta_ * max_diag_raw;
