@@ -211,6 +211,7 @@ double NormalEquations::analyze_flops() const {
 
 Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
+  SerialCholmodScope serial;  // one BLAS thread (sparse_cholesky.h)
   ++timers_.solves;
   const int N = p_.num_x;
   Eigen::VectorXd bp(N), out(N);
@@ -312,7 +313,7 @@ bool NormalEquations::factor(const Scaling& sc) {
   diag_saved_.resize(N);
   for (int d = 0; d < N; ++d) diag_saved_[d] = values[diagonal_[d]];
   bool ok = false;
-  SerialCholmodScope serial;  // sparse_cholesky.h: CHOLMOD's OpenMP loops cost more than they gain
+  SerialCholmodScope serial;  // sparse_cholesky.h: CHOLMOD's OpenMP loops and BLAS threads cost more than they gain
   for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
     if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
     const double floor = 1e-3 * delta_ * max_diag_raw;
