@@ -67,29 +67,32 @@ std::vector<int> vertex_bisection(const std::vector<int>& offset, const std::vec
 std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
                                    const std::vector<int>& part, int sizes[3]) {
   const int n = static_cast<int>(offset.size()) - 1;
-  std::vector<int> order;
-  order.reserve(n);
   std::vector<int> local(n, -1);
-  for (int p = 0; p < 3; ++p) {
-    std::vector<int> vertices;
-    for (int v = 0; v < n; ++v)
-      if (part[v] == p) {
-        local[v] = static_cast<int>(vertices.size());
-        vertices.push_back(v);
-      }
-    sizes[p] = static_cast<int>(vertices.size());
-    if (p == 2) {  // the separator's Schur complement is dense: any order
-      order.insert(order.end(), vertices.begin(), vertices.end());
-      break;
-    }
+  std::vector<int> vertices[3];
+  for (int v = 0; v < n; ++v) {
+    local[v] = static_cast<int>(vertices[part[v]].size());
+    vertices[part[v]].push_back(v);
+  }
+  // The halves' nested dissections (one after the other: METIS's random generator is a
+  // global, so parallel calls would make the order irreproducible); the separator's Schur
+  // complement is dense: any order.
+  std::vector<int> half_order[2];
+  auto order_half = [&](int p) {
     std::vector<int> sub_offset(1, 0), sub_adj;
-    for (int v : vertices) {
+    for (int v : vertices[p]) {
       for (int e = offset[v]; e < offset[v + 1]; ++e)
         if (part[adj[e]] == p) sub_adj.push_back(local[adj[e]]);
       sub_offset.push_back(static_cast<int>(sub_adj.size()));
     }
-    for (int i : vertex_ordering(sub_offset, sub_adj)) order.push_back(vertices[i]);
-  }
+    for (int i : vertex_ordering(sub_offset, sub_adj)) half_order[p].push_back(vertices[p][i]);
+  };
+  order_half(0);
+  order_half(1);
+  std::vector<int> order;
+  order.reserve(n);
+  for (int p = 0; p < 2; ++p) order.insert(order.end(), half_order[p].begin(), half_order[p].end());
+  order.insert(order.end(), vertices[2].begin(), vertices[2].end());
+  for (int p = 0; p < 3; ++p) sizes[p] = static_cast<int>(vertices[p].size());
   return order;
 }
 

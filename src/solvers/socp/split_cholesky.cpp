@@ -158,7 +158,8 @@ bool SplitCholesky::analyze(const Eigen::SparseMatrix<double>& upper, int n0, in
   ass_source_.clear();
   ass_row_.clear();
   ass_col_.clear();
-  for (int p = 0; p < 2; ++p) {
+  // The halves (pattern and CHOLMOD's symbolic analysis) in parallel.
+  auto build_half = [&](int p) {
     half_[p] = std::make_unique<Half>();
     Half& h = *half_[p];
     h.off = p == 0 ? 0 : n0;
@@ -186,8 +187,11 @@ bool SplitCholesky::analyze(const Eigen::SparseMatrix<double>& upper, int n0, in
     std::copy(b_outer.begin(), b_outer.end(), h.B.outerIndexPtr());
     std::copy(b_inner.begin(), b_inner.end(), h.B.innerIndexPtr());
     std::fill(h.B.valuePtr(), h.B.valuePtr() + b_inner.size(), 0.0);
-    if (!h.analyze()) return false;
-  }
+    return h.analyze();
+  };
+  bool ok[2] = {false, false};
+  tbb::parallel_invoke([&] { ok[0] = build_half(0); }, [&] { ok[1] = build_half(1); });
+  if (!ok[0] || !ok[1]) return false;
   for (int col = sep; col < N; ++col)
     for (int z = outer[col]; z < outer[col + 1]; ++z)
       if (inner[z] >= sep) {
