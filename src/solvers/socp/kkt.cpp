@@ -10,6 +10,7 @@
 
 #include "strictmin/solvers/socp/ordering.h"
 #include "strictmin/solvers/socp/soc.h"
+#include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {
 namespace {
@@ -80,7 +81,17 @@ void NormalEquations::build_pattern() {
       offset[f + 1] = offset[f] + static_cast<int>(nb[f].size());
       adj.insert(adj.end(), nb[f].begin(), nb[f].end());
     }
-    const std::vector<int> order = vertex_ordering(offset, adj);
+    // Large problems: split by a top-level separator and factorise the halves on two threads
+    // (split_cholesky.h); the order is then [part 0 | part 1 | separator].
+    std::vector<int> order;
+    if (F * n >= settings_.split_min_dofs) {
+      const std::vector<int> part = vertex_bisection(offset, adj);
+      if (!part.empty()) {
+        order = bisected_ordering(offset, adj, part, split_sizes_);
+        for (int& size : split_sizes_) size *= n;
+      }
+    }
+    if (order.empty()) order = vertex_ordering(offset, adj);
     perm_.assign(N, 0);
     for (int i = 0; i < F; ++i)
       for (int r = 0; r < n; ++r) perm_[order[i] * n + r] = i * n + r;
@@ -171,30 +182,45 @@ void NormalEquations::build_pattern() {
   slot_values_.resize(static_cast<Eigen::Index>(E) * npairs_);
   cone_k_.resize(static_cast<Eigen::Index>(E) * L);
   // Supernodal symbolic analysis in our order (CHOLMOD's own ordering switched off).
+  if (split_sizes_[0] > 0) {
+    split_ = std::make_unique<SplitCholesky>();
+    if (!split_->analyze(matrix_, split_sizes_[0], split_sizes_[1])) split_.reset();
+  }
   llt_.cholmod().print = 0;
   llt_.cholmod().nmethods = 1;
   llt_.cholmod().method[0].ordering = CHOLMOD_NATURAL;
-  if (N > 0) llt_.analyzePattern(matrix_);
-  if (settings_.verbose && N > 0)
+  if (N > 0 && !split_) llt_.analyzePattern(matrix_);
+  if (settings_.verbose && N > 0) {
     std::fprintf(stderr, "kkt: %d dofs, %ld nonzeros, factor %.3g nonzeros, %.3g flops per factorisation\n", N,
-                 static_cast<long>(matrix_.nonZeros()), llt_.cholmod().lnz, llt_.cholmod().fl);
+                 static_cast<long>(matrix_.nonZeros()), factor_nonzeros(), analyze_flops());
+    if (split_)
+      std::fprintf(stderr, "kkt: split in halves of %d and %d dofs and a separator of %d, factorised in parallel\n",
+                   split_sizes_[0], split_sizes_[1], split_sizes_[2]);
+  }
 }
 
 double NormalEquations::factor_nonzeros() const {
+  if (split_) return split_->nonzeros();
   return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().lnz;
 }
 
 double NormalEquations::analyze_flops() const {
+  if (split_) return split_->flops();
   return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().fl;
 }
 
 Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
+  SerialCholmodScope serial;  // one BLAS thread (sparse_cholesky.h)
   ++timers_.solves;
   const int N = p_.num_x;
   Eigen::VectorXd bp(N), out(N);
   for (int d = 0; d < N; ++d) bp[perm_[d]] = b[d];
-  const Eigen::VectorXd xp = llt_.solve(bp);
+  Eigen::VectorXd xp;
+  if (split_)
+    split_->solve(bp, xp);
+  else
+    xp = llt_.solve(bp);
   for (int d = 0; d < N; ++d) out[d] = xp[perm_[d]];
   return out;
 }
@@ -287,12 +313,17 @@ bool NormalEquations::factor(const Scaling& sc) {
   diag_saved_.resize(N);
   for (int d = 0; d < N; ++d) diag_saved_[d] = values[diagonal_[d]];
   bool ok = false;
+  SerialCholmodScope serial;  // sparse_cholesky.h: CHOLMOD's OpenMP loops and BLAS threads cost more than they gain
   for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
     if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
     const double floor = 1e-3 * delta_ * max_diag_raw;
     for (int d = 0; d < N; ++d) values[diagonal_[d]] = diag_saved_[d] * (1.0 + delta_) + floor;
-    llt_.factorize(matrix_);
-    ok = llt_.info() == Eigen::Success;
+    if (split_) {
+      ok = split_->factorize(values);
+    } else {
+      llt_.factorize(matrix_);
+      ok = llt_.info() == Eigen::Success;
+    }
   }
   const double t_factor = lap();
   factor_timer.stop();

@@ -7,38 +7,105 @@
 
 namespace strictmin::socp {
 
+namespace {
+
+// The graph's lower triangle with a diagonal, as CHOLMOD's ordering routines take it.
+struct LowerGraph {
+  Eigen::SparseMatrix<double> lower;
+  cholmod_sparse A;
+  LowerGraph(const std::vector<int>& offset, const std::vector<int>& adj) {
+    const int n = static_cast<int>(offset.size()) - 1;
+    std::vector<Eigen::Triplet<double>> pattern;
+    pattern.reserve(adj.size() / 2 + n);
+    for (int v = 0; v < n; ++v) {
+      pattern.emplace_back(v, v, 1.0);
+      for (int e = offset[v]; e < offset[v + 1]; ++e)
+        if (adj[e] > v) pattern.emplace_back(adj[e], v, 1.0);
+    }
+    lower.resize(n, n);
+    lower.setFromTriplets(pattern.begin(), pattern.end());
+    lower.makeCompressed();
+    A.nrow = A.ncol = n;
+    A.nzmax = lower.nonZeros();
+    A.p = lower.outerIndexPtr();
+    A.i = lower.innerIndexPtr();
+    A.nz = nullptr;
+    A.x = lower.valuePtr();
+    A.z = nullptr;
+    A.stype = -1;
+    A.itype = CHOLMOD_INT;
+    A.xtype = CHOLMOD_REAL;
+    A.dtype = CHOLMOD_DOUBLE;
+    A.sorted = 1;
+    A.packed = 1;
+  }
+};
+
+}  // namespace
+
+std::vector<int> vertex_bisection(const std::vector<int>& offset, const std::vector<int>& adj) {
+  const int n = static_cast<int>(offset.size()) - 1;
+  if (n < 3) return {};
+  LowerGraph g(offset, adj);
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  std::vector<int> part(n, 0);
+  const long sep = cholmod_bisect(&g.A, nullptr, 0, 1, part.data(), &common);
+  const bool ok = common.status == CHOLMOD_OK && sep >= 0;
+  cholmod_finish(&common);
+  if (!ok) return {};
+  int count[3] = {0, 0, 0};
+  for (int v : part) {
+    if (v < 0 || v > 2) return {};
+    ++count[v];
+  }
+  if (count[0] == 0 || count[1] == 0) return {};
+  return part;
+}
+
+std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
+                                   const std::vector<int>& part, int sizes[3]) {
+  const int n = static_cast<int>(offset.size()) - 1;
+  std::vector<int> local(n, -1);
+  std::vector<int> vertices[3];
+  for (int v = 0; v < n; ++v) {
+    local[v] = static_cast<int>(vertices[part[v]].size());
+    vertices[part[v]].push_back(v);
+  }
+  // The halves' nested dissections (one after the other: METIS's random generator is a
+  // global, so parallel calls would make the order irreproducible); the separator's Schur
+  // complement is dense: any order.
+  std::vector<int> half_order[2];
+  auto order_half = [&](int p) {
+    std::vector<int> sub_offset(1, 0), sub_adj;
+    for (int v : vertices[p]) {
+      for (int e = offset[v]; e < offset[v + 1]; ++e)
+        if (part[adj[e]] == p) sub_adj.push_back(local[adj[e]]);
+      sub_offset.push_back(static_cast<int>(sub_adj.size()));
+    }
+    for (int i : vertex_ordering(sub_offset, sub_adj)) half_order[p].push_back(vertices[p][i]);
+  };
+  order_half(0);
+  order_half(1);
+  std::vector<int> order;
+  order.reserve(n);
+  for (int p = 0; p < 2; ++p) order.insert(order.end(), half_order[p].begin(), half_order[p].end());
+  order.insert(order.end(), vertices[2].begin(), vertices[2].end());
+  for (int p = 0; p < 3; ++p) sizes[p] = static_cast<int>(vertices[p].size());
+  return order;
+}
+
 std::vector<int> vertex_ordering(const std::vector<int>& offset, const std::vector<int>& adj, int metis_threshold) {
   const int n = static_cast<int>(offset.size()) - 1;
   std::vector<int> order(std::max(n, 0));
   std::iota(order.begin(), order.end(), 0);
   if (n < 3) return order;
-  std::vector<Eigen::Triplet<double>> pattern;
-  pattern.reserve(adj.size() / 2 + n);
-  for (int v = 0; v < n; ++v) {
-    pattern.emplace_back(v, v, 1.0);
-    for (int e = offset[v]; e < offset[v + 1]; ++e)
-      if (adj[e] > v) pattern.emplace_back(adj[e], v, 1.0);
-  }
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(pattern.begin(), pattern.end());
-  lower.makeCompressed();
+  LowerGraph g(offset, adj);
   cholmod_common common;
   cholmod_start(&common);
   common.print = 0;
-  cholmod_sparse A;
-  A.nrow = A.ncol = n;
-  A.nzmax = lower.nonZeros();
-  A.p = lower.outerIndexPtr();
-  A.i = lower.innerIndexPtr();
-  A.nz = nullptr;
-  A.x = lower.valuePtr();
-  A.z = nullptr;
-  A.stype = -1;
-  A.itype = CHOLMOD_INT;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1;
-  A.packed = 1;
+  cholmod_sparse& A = g.A;
   std::vector<int> perm(n);
   bool ok = false;
   if (n >= metis_threshold) ok = cholmod_metis(&A, nullptr, 0, 1, perm.data(), &common);

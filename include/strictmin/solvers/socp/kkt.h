@@ -23,11 +23,13 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "strictmin/solvers/socp/cone_program.h"
 #include "strictmin/solvers/socp/cones.h"
 #include "strictmin/solvers/socp/settings.h"
+#include "strictmin/solvers/socp/split_cholesky.h"
 
 namespace strictmin::socp {
 
@@ -105,6 +107,8 @@ class NormalEquations {
   Eigen::SparseMatrix<double, Eigen::RowMajor> at_;  // A^T (dofs by equalities)
   std::vector<int> perm_;                  // dof -> row of matrix_ (fill-reducing order)
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt_;
+  std::unique_ptr<SplitCholesky> split_;   // instead of llt_ for large problems
+  int split_sizes_[3] = {0, 0, 0};         // dofs of the halves and the separator
   Eigen::VectorXd llt_solve(const Eigen::VectorXd& b) const;  // in dof numbering
   double delta_ = 0, inv_rho_ = 0;
   Eigen::VectorXd diag_saved_;

@@ -14,4 +14,13 @@ namespace strictmin::socp {
 std::vector<int> vertex_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
                                  int metis_threshold = 5000);
 
+// Top-level vertex separator (METIS, through CHOLMOD): part[v] is 0 or 1 for the two halves,
+// 2 for the separator. Empty when METIS fails or a half is empty.
+std::vector<int> vertex_bisection(const std::vector<int>& offset, const std::vector<int>& adj);
+
+// An elimination order for a bisected graph: part 0 (nested dissection of its subgraph),
+// part 1 (likewise), then the separator. sizes[p] receives the number of vertices of part p.
+std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
+                                   const std::vector<int>& part, int sizes[3]);
+
 }  // namespace strictmin::socp

@@ -28,6 +28,9 @@ struct IpmSettings {
   // 1 + regularization (plus 1e-3 * regularization * the largest one); regularization is
   // multiplied by 100 on every failed factorisation (at most factorization_retries times).
   double regularization = 1e-15;
+  // Normal equations with at least this many free dofs are split by a vertex separator and
+  // their halves factorised on two threads (split_cholesky.h).
+  int split_min_dofs = 20000;
   int factorization_retries = 4;
   // Refinement of each Newton direction: at most refinement_steps preconditioned CG steps
   // on the normal equations, stopping at a relative residual of refinement_tolerance.
