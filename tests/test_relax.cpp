@@ -229,7 +229,11 @@ void converges_to_ring_optima(const Problem& p, int max_sweeps) {
   std::printf("[ %dD ] converged in %d sweeps, max %.6f\n", d, r.iterations, r.distortion.maxCoeff());
   Eigen::MatrixXd X = r.positions;
   const double move = RelaxSweeper(p, 0.0).sweep(p, X);
-  EXPECT_LE(move, 1e-9) << "a final sweep still moves vertices";
+  // Positions are settled only to about sqrt(machine epsilon) (1.5e-8) times the mesh scale:
+  // where a ring's optimum has one active element the maximum is smooth there, so a move of
+  // 1e-8 changes it by ~1e-16, below what the plain acceptance rule can tell from round-off
+  // (the start's last bits, e.g. the BLAS kernels CHOLMOD runs on, decide such moves).
+  EXPECT_LE(move, 1e-7) << "a final sweep still moves vertices";
   // Every free vertex: its ring's own L-infinity optimum is no lower than where it is.
   const Eigen::VectorXd D = field_deviation(p, r.positions);
   for (int v = 0; v < p.num_vertices; ++v) {

@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "strictmin/solvers/socp/fixed_sizes.h"
+
 namespace strictmin::socp {
 
 void parallel_for_index(int count, int grain, const std::function<void(int, int)>& body) {
@@ -38,65 +40,74 @@ void ConeProgram::finalize() {
     }
 }
 
+// The element loops below take n, m (and the corner count m + 1) as compile-time constants
+// for the common element kinds (fixed_sizes.h): they run once per Newton solve or more.
 void ConeProgram::apply_g(const Eigen::VectorXd& x, Eigen::VectorXd& tails) const {
-  const int c = corners(), tt = t();
-  tails.resize(static_cast<Eigen::Index>(num_element_cones()) * tt);
-  parallel_for_index(num_element_cones(), kGrain, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      double* out = tails.data() + static_cast<Eigen::Index>(i) * tt;
-      for (int a = 0; a < tt; ++a) out[a] = 0.0;
-      for (int j = 0; j < c; ++j) {
-        const int base = dof_base[i * c + j];
-        if (base < 0) continue;
-        const double* g = grad.data() + (static_cast<size_t>(i) * c + j) * m;
-        for (int r = 0; r < n; ++r) {
-          const double xr = x[base + r];
-          for (int col = 0; col < m; ++col) out[r * m + col] += xr * g[col];
+  tails.resize(static_cast<Eigen::Index>(num_element_cones()) * t());
+  with_element_sizes(n, m, [&](auto n_c, auto m_c) {
+    parallel_for_index(num_element_cones(), kGrain, [&](int begin, int end) {
+      const int nn = n_c, mm = m_c, c = mm + 1, tt = nn * mm;
+      for (int i = begin; i < end; ++i) {
+        double* out = tails.data() + static_cast<Eigen::Index>(i) * tt;
+        for (int a = 0; a < tt; ++a) out[a] = 0.0;
+        for (int j = 0; j < c; ++j) {
+          const int base = dof_base[i * c + j];
+          if (base < 0) continue;
+          const double* g = grad.data() + (static_cast<size_t>(i) * c + j) * mm;
+          for (int r = 0; r < nn; ++r) {
+            const double xr = x[base + r];
+            for (int col = 0; col < mm; ++col) out[r * mm + col] += xr * g[col];
+          }
         }
       }
-    }
+    });
   });
 }
 
 void ConeProgram::apply_gt(const double* tails, Eigen::Index stride, Eigen::Index first, Eigen::VectorXd& x) const {
-  const int c = corners();
   const int free_vertices = num_x / n;
-  x.setZero(num_x);
-  parallel_for_index(free_vertices, kGrain, [&](int begin, int end) {
-    for (int f = begin; f < end; ++f) {
-      double acc[3] = {0, 0, 0};
-      for (int e = incidence_offset[f]; e < incidence_offset[f + 1]; ++e) {
-        const int i = incidence[e] / c;
-        const double* g = grad.data() + static_cast<size_t>(incidence[e]) * m;
-        const double* y = tails + static_cast<Eigen::Index>(i) * stride + first;
-        for (int r = 0; r < n; ++r)
-          for (int col = 0; col < m; ++col) acc[r] += y[r * m + col] * g[col];
+  x.resize(num_x);
+  with_element_sizes(n, m, [&](auto n_c, auto m_c) {
+    parallel_for_index(free_vertices, kGrain, [&](int begin, int end) {
+      const int nn = n_c, mm = m_c, c = mm + 1;
+      for (int f = begin; f < end; ++f) {
+        double acc[3] = {0, 0, 0};
+        for (int e = incidence_offset[f]; e < incidence_offset[f + 1]; ++e) {
+          const int i = incidence[e] / c;
+          const double* g = grad.data() + static_cast<size_t>(incidence[e]) * mm;
+          const double* y = tails + static_cast<Eigen::Index>(i) * stride + first;
+          for (int r = 0; r < nn; ++r)
+            for (int col = 0; col < mm; ++col) acc[r] += y[r * mm + col] * g[col];
+        }
+        for (int r = 0; r < nn; ++r) x[f * nn + r] = acc[r];
       }
-      for (int r = 0; r < n; ++r) x[f * n + r] = acc[r];
-    }
+    });
   });
 }
 
 void ConeProgram::apply_m(const Eigen::VectorXd& x, double k, bool with_offset, Eigen::VectorXd& out) const {
-  const int c = corners(), tt = t(), E = num_element_cones();
+  const int E = num_element_cones();
   out.resize(cone_size());
-  parallel_for_index(E, kGrain, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      double* o = out.data() + cone_offset(i);
-      o[0] = head_a[i] * k + (with_offset ? head_b[i] : 0.0);
-      double* tail = o + 1;
-      const double* hi = h.data() + static_cast<Eigen::Index>(i) * tt;
-      for (int a = 0; a < tt; ++a) tail[a] = with_offset ? -hi[a] : 0.0;
-      for (int j = 0; j < c; ++j) {
-        const int base = dof_base[i * c + j];
-        if (base < 0) continue;
-        const double* g = grad.data() + (static_cast<size_t>(i) * c + j) * m;
-        for (int r = 0; r < n; ++r) {
-          const double xr = x[base + r];
-          for (int col = 0; col < m; ++col) tail[r * m + col] += xr * g[col];
+  with_element_sizes(n, m, [&](auto n_c, auto m_c) {
+    parallel_for_index(E, kGrain, [&](int begin, int end) {
+      const int nn = n_c, mm = m_c, c = mm + 1, tt = nn * mm;
+      for (int i = begin; i < end; ++i) {
+        double* o = out.data() + static_cast<Eigen::Index>(i) * (tt + 1);
+        o[0] = head_a[i] * k + (with_offset ? head_b[i] : 0.0);
+        double* tail = o + 1;
+        const double* hi = h.data() + static_cast<Eigen::Index>(i) * tt;
+        for (int a = 0; a < tt; ++a) tail[a] = with_offset ? -hi[a] : 0.0;
+        for (int j = 0; j < c; ++j) {
+          const int base = dof_base[i * c + j];
+          if (base < 0) continue;
+          const double* g = grad.data() + (static_cast<size_t>(i) * c + j) * mm;
+          for (int r = 0; r < nn; ++r) {
+            const double xr = x[base + r];
+            for (int col = 0; col < mm; ++col) tail[r * mm + col] += xr * g[col];
+          }
         }
       }
-    }
+    });
   });
   if (has_scalar) out[cone_offset(E)] = head_a[E] * k + (with_offset ? head_b[E] : 0.0);
 }

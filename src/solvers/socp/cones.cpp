@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
 
+#include "strictmin/solvers/socp/fixed_sizes.h"
 #include "strictmin/solvers/socp/soc.h"
 
 namespace strictmin::socp {
@@ -13,22 +14,35 @@ namespace {
 
 constexpr int kGrain = 4096;
 
+// f(i, offset, dim) for every cone; the element cones with their dimension known at compile
+// time (fixed_sizes.h), the optional scalar cone last.
 template <class F>
 void for_each_cone(const ConeProgram& p, F&& f) {
-  parallel_for_index(p.num_cones(), kGrain, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) f(i, p.cone_offset(i), p.cone_dim(i));
+  const int E = p.num_element_cones();
+  with_cone_dim(p.t() + 1, [&](auto dim) {
+    parallel_for_index(E, kGrain, [&](int begin, int end) {
+      const int d = dim;
+      for (int i = begin; i < end; ++i) f(i, static_cast<Eigen::Index>(i) * d, d);
+    });
   });
+  if (p.has_scalar) f(E, p.cone_offset(E), 1);
 }
 
 template <class F>
 double min_over_cones(const ConeProgram& p, F&& f) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<int>(0, p.num_cones(), kGrain), std::numeric_limits<double>::infinity(),
-      [&](const tbb::blocked_range<int>& r, double acc) {
-        for (int i = r.begin(); i < r.end(); ++i) acc = std::min(acc, f(p.cone_offset(i), p.cone_dim(i)));
-        return acc;
-      },
-      [](double a, double b) { return std::min(a, b); });
+  const int E = p.num_element_cones();
+  double result = with_cone_dim(p.t() + 1, [&](auto dim) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<int>(0, E, kGrain), std::numeric_limits<double>::infinity(),
+        [&](const tbb::blocked_range<int>& r, double acc) {
+          const int d = dim;
+          for (int i = r.begin(); i < r.end(); ++i) acc = std::min(acc, f(static_cast<Eigen::Index>(i) * d, d));
+          return acc;
+        },
+        [](double a, double b) { return std::min(a, b); });
+  });
+  if (p.has_scalar) result = std::min(result, f(p.cone_offset(E), 1));
+  return result;
 }
 
 }  // namespace

@@ -387,10 +387,9 @@ void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const
 void NormalEquations::apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const {
   PhaseTimer timer(timers_.apply_wall, timers_.apply_cpu);
   ++timers_.applies;
-  Eigen::VectorXd mv, t1, t2;
+  Eigen::VectorXd mv, t2;
   p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
-  apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, t1);
-  apply_scaling(p_, *scaling_, ScalingOp::WInv, t1, t2);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv2, mv, t2);
   p_.apply_mt(t2, ox, ok);
   if (p_.has_quad()) {
     Eigen::VectorXd px;

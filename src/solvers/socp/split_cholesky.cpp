@@ -6,6 +6,7 @@
 #include <limits>
 #include <tbb/parallel_invoke.h>
 
+#include "strictmin/solvers/socp/supernodal_solve.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
 extern "C" {
@@ -125,6 +126,13 @@ struct SplitCholesky::Half {
     for (int k = 0; k < n; ++k) x_part[perm[k]] = rhs[k];
   }
   void solve_in_place(int sys) const {
+    if (supports_supernodal_solve(*L)) {  // the usual case: no BLAS calls, no allocation
+      if (sys == CHOLMOD_L)
+        supernodal_forward(*L, rhs.data());
+      else
+        supernodal_backward(*L, rhs.data());
+      return;
+    }
     cholmod_dense b;
     std::memset(&b, 0, sizeof b);
     b.nrow = b.d = n + ns;
