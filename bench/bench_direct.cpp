@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "problems.h"
 #include "strictmin/solvers/strict.h"
@@ -18,10 +19,12 @@ void run(benchmark::State& state, const Problem& p) {
   StrictStep last;
   for (auto _ : state) {
     DirectOptions options;
+    // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
+    if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
     options.progress = [&](const StrictStep& s) {
       last = s;
-      std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %.1f s\n", s.step, s.k, s.fixed_total, s.fixed_now,
-                   s.time_s);
+      std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
+                   s.k, s.fixed_total, s.fixed_now, s.level_iterations, s.level_free_vertices, s.time_s);
     };
     r = solve_direct(p, options);
     benchmark::DoNotOptimize(r.positions.data());

@@ -34,6 +34,11 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
                 "direct: relative gap at which the levels after the first stop (default -1: delta-k / 100; the "
                 "first level uses --gap)")
       ->capture_default_str();
+  g->add_option("--moving-rings", a.moving_rings,
+                "direct: levels after the first move only the vertices within this many rings of the elements "
+                "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this")
       ->capture_default_str();
 }
@@ -58,6 +63,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.direct.delta_k = a.delta_k;
   o.direct.k_min = a.k_min;
   o.direct.level_gap = a.level_gap;
+  o.direct.moving_rings = a.moving_rings;
   o.direct.linf = o.linf;
   o.exact.max_elements = a.exact_max_elements;
   o.exact.linf = o.linf;
@@ -78,8 +84,10 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
                    r.gap, r.time_s);
     };
     auto strict_progress = [](const StrictStep& s) {
-      std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d  %.2f s\n", s.step, s.k,
-                   s.fixed_now, s.fixed_total, s.solves, s.time_s);
+      std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d", s.step, s.k, s.fixed_now,
+                   s.fixed_total, s.solves);
+      if (s.level_free_vertices >= 0) std::fprintf(stderr, "  moving vertices %d", s.level_free_vertices);
+      std::fprintf(stderr, "  %.2f s\n", s.time_s);
     };
     o.direct.progress = strict_progress;
     o.exact.progress = strict_progress;

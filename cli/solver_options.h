@@ -27,6 +27,7 @@ struct SolverArgs {
   double delta_k = 1e-3;
   double k_min = 0.1;
   double level_gap = -1;  // direct: relative gap of the levels after the first (-1: delta_k / 100)
+  int moving_rings = 2;   // direct: vertices within this many rings of the free elements move (0: all)
   int exact_max_elements = 3000;
 };
 

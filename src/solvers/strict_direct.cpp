@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "strictmin/problem/subproblem.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/solvers/timing.h"
@@ -15,6 +16,35 @@ std::vector<char> movable_elements(const Problem& p) {
   for (int e = 0; e < p.num_elements(); ++e)
     for (int j = 0; j < p.corners(); ++j) movable[e] |= p.fixed[p.elements(e, j)] ? 0 : 1;
   return movable;
+}
+
+// One level on the region that can still change (DirectOptions::moving_rings): the vertices
+// within that many rings of the free elements move, the others keep the previous level's
+// map. Returns the level's result on the whole mesh (distortion of the elements left out:
+// their previous values, as their vertices did not move).
+template <class LevelFn>
+Result solve_restricted_level(const Problem& p, const std::vector<char>& movable_element,
+                              const Eigen::VectorXd& bounds, const Result& previous, const LinfOptions& linf,
+                              const DirectOptions& options, LevelFn&& solve_level, int& moved_vertices) {
+  std::vector<char> seeds(p.num_vertices, 0);
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (movable_element[e] && bounds(e) < 0)
+      for (int j = 0; j < p.corners(); ++j) seeds[p.elements(e, j)] = 1;
+  const std::vector<char> moving = vertices_within_rings(p, seeds, options.moving_rings);
+  Subproblem sub = restrict_to_movable(p, moving, previous.positions);
+  moved_vertices = sub.problem.num_free();
+  LinfOptions o = linf;
+  o.element_bounds.resize(static_cast<Eigen::Index>(sub.element.size()));
+  for (size_t i = 0; i < sub.element.size(); ++i) o.element_bounds[static_cast<Eigen::Index>(i)] = bounds(sub.element[i]);
+  Result r = solve_level(sub.problem, o, sub.problem.positions);
+  Result full = r;
+  full.positions = previous.positions;
+  full.distortion = previous.distortion;
+  if (r.positions.rows() == sub.problem.num_vertices)
+    for (size_t i = 0; i < sub.vertex.size(); ++i) full.positions.row(sub.vertex[i]) = r.positions.row(static_cast<Eigen::Index>(i));
+  if (r.distortion.size() == static_cast<Eigen::Index>(sub.element.size()))
+    for (size_t i = 0; i < sub.element.size(); ++i) full.distortion[sub.element[i]] = r.distortion[static_cast<Eigen::Index>(i)];
+  return full;
 }
 
 }  // namespace
@@ -38,14 +68,20 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       linf.gap_tolerance = std::max(linf.gap_tolerance, level_gap);
       linf.acceptable_gap_tolerance = std::max(linf.acceptable_gap_tolerance, linf.gap_tolerance);
     }
+    // Each level starts from the previous level's map: it meets every fixed bound (they are
+    // widened to it below), so the solve needs no phase 1.
+    auto solve_level = [&](const Problem& problem, const LinfOptions& o, const Eigen::MatrixXd& X) -> Result {
+      if (options.level_solver) return options.level_solver(problem, o, X);
+      if (&problem != &p) return solve_linf(problem, o);  // a sub-problem: its positions are X
+      level.positions = X;
+      return solve_linf(level, o);
+    };
     Result r;
-    if (options.level_solver) {
-      r = options.level_solver(p, linf, out.positions);
+    int moved_vertices = -1;
+    if (step == 1 || options.moving_rings <= 0) {
+      r = solve_level(p, linf, out.positions);
     } else {
-      // Start from the previous level's map: it meets every fixed bound (they are widened to
-      // it below), so the solve needs no phase 1.
-      level.positions = out.positions;
-      r = solve_linf(level, linf);
+      r = solve_restricted_level(p, movable, bounds, out, linf, options, solve_level, moved_vertices);
     }
     if (step == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
@@ -96,7 +132,18 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     rec.lower_bound = r.lower_bound;
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
-    if (options.progress) options.progress({step, k, fixed_now, fixed_total, step, rec.time_s});
+    if (options.progress) {
+      StrictStep info;
+      info.level_free_vertices = moved_vertices;
+      info.step = step;
+      info.k = k;
+      info.fixed_now = fixed_now;
+      info.fixed_total = fixed_total;
+      info.solves = step;
+      info.level_iterations = r.iterations;
+      info.time_s = rec.time_s;
+      options.progress(info);
+    }
   }
   out.time_s = seconds_since(t0);
   return out;

@@ -24,6 +24,8 @@ struct StrictStep {
   int fixed_total = 0;   // elements fixed so far
   int solves = 0;        // L-infinity solves so far
   double time_s = 0;
+  int level_iterations = 0;      // interior-point iterations of this step's solve (direct)
+  int level_free_vertices = -1;  // vertices this step's solve moved (-1: not reported)
 };
 
 // Solves one level of the direct algorithm: problem (1) with the bounds in
@@ -40,6 +42,12 @@ struct DirectOptions {
   // Negative: delta_k / 100 (never finer than linf.gap_tolerance). The first level (the
   // L-infinity optimum and its certified bound) always uses linf.gap_tolerance.
   double level_gap = -1;
+  // Levels after the first move only the vertices within this many rings of the elements
+  // still free (1: the free elements' own vertices; 2: and their neighbours; ...); the rest
+  // of the mesh stays where the previous level left it, and the level's problem shrinks to
+  // the region that can still change (problem/subproblem.h). 0: every vertex moves at every
+  // level (the paper's Algorithm 2 as stated). See docs/strict.md for what it costs.
+  int moving_rings = 2;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
   Eigen::MatrixXd start;     // map the first level starts from (default: problem.positions)
