@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -11,6 +12,7 @@
 #include "strictmin/measures/measures.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/problem/subproblem.h"
 
 using namespace strictmin;
 
@@ -149,3 +151,62 @@ TEST(Problem, HandlesAreChecked) {
 }
 
 }  // namespace
+
+// A problem restricted to movable vertices (problem/subproblem.h): the elements with a
+// movable vertex, their other vertices held at X, the same Jacobians there, and equalities
+// with the held columns moved to the right-hand side.
+TEST(Subproblem, KeepsTheElementsOfMovableVerticesAndTheirJacobians) {
+  const Mesh mesh = make_grid(6, 6);  // 7 x 7 vertices, the centre is 24
+  Problem p = make_problem(mesh);
+  p.fix({{0, Eigen::Vector2d(0.0, 0.0)}});
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  Eigen::MatrixXd X = p.positions;
+  for (int i = 0; i < X.size(); ++i) X.data()[i] += u(rng);
+  X.row(0) = Eigen::RowVector2d(0.0, 0.0);
+  // Two equalities: q_24,x - q_48,x = 0.3 (24 movable, the corner 48 left out) and
+  // q_47,y + q_46,y = 1 (both left out).
+  std::vector<Eigen::Triplet<double>> t = {{0, 48, 1.0}, {0, 96, -1.0}, {1, 95, 1.0}, {1, 93, 1.0}};
+  p.eq_matrix.resize(2, 2 * p.num_vertices);
+  p.eq_matrix.setFromTriplets(t.begin(), t.end());
+  p.eq_rhs = Eigen::Vector2d(0.3, 1.0);
+  std::vector<char> seeds(p.num_vertices, 0);
+  seeds[24] = 1;
+  const std::vector<char> ring2 = vertices_within_rings(p, seeds, 2);
+  int count = 0;
+  for (char c : ring2) count += c;
+  EXPECT_EQ(count, 9);  // the centre and the 8 grid points around it (alternating diagonals)
+  EXPECT_EQ(vertices_within_rings(p, seeds, 0), std::vector<char>(p.num_vertices, 1));
+  std::vector<char> movable = ring2;
+  movable[0] = 1;  // a fixed vertex never moves, whatever its flag
+  const Subproblem sub = restrict_to_movable(p, movable, X);
+  const Problem& s = sub.problem;
+  EXPECT_EQ(s.num_free(), 9);
+  for (int i = 0; i < s.num_vertices; ++i) {
+    EXPECT_EQ(s.fixed[i] != 0, !ring2[sub.vertex[i]]) << "vertex " << sub.vertex[i];
+    EXPECT_EQ(s.positions.row(i), X.row(sub.vertex[i]));
+  }
+  EXPECT_EQ(std::count(sub.vertex.begin(), sub.vertex.end(), 0), 0);
+  // Every element with a movable vertex, and nothing else.
+  int kept = 0;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    bool touches = false;
+    for (int j = 0; j < 3; ++j) touches = touches || (ring2[p.elements(e, j)] && !p.fixed[p.elements(e, j)]);
+    if (!touches) continue;
+    ASSERT_LT(kept, static_cast<int>(sub.element.size()));
+    EXPECT_EQ(sub.element[kept], e);
+    EXPECT_LT((s.jacobian(kept, s.positions) - p.jacobian(e, X)).norm(), 1e-14);
+    EXPECT_EQ(s.target(kept), p.target(e));
+    EXPECT_EQ(s.weights[kept], p.weights[e]);
+    ++kept;
+  }
+  EXPECT_EQ(kept, static_cast<int>(sub.element.size()));
+  // The first equality keeps its movable column, the left-out one moves to the right-hand
+  // side; the second has no movable column and goes.
+  ASSERT_EQ(s.eq_matrix.rows(), 1);
+  const int local24 = static_cast<int>(std::find(sub.vertex.begin(), sub.vertex.end(), 24) - sub.vertex.begin());
+  EXPECT_EQ(s.eq_matrix.coeff(0, 2 * local24), 1.0);
+  EXPECT_EQ(s.eq_matrix.nonZeros(), 1);
+  EXPECT_EQ(std::count(sub.vertex.begin(), sub.vertex.end(), 48), 0);
+  EXPECT_NEAR(s.eq_rhs[0], 0.3 + X(48, 0), 1e-15);
+}
