@@ -21,6 +21,8 @@ void run(benchmark::State& state, const Problem& p) {
     DirectOptions options;
     // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
     if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
+    // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
+    if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) options.linf.verbose = std::atoi(v);
     options.progress = [&](const StrictStep& s) {
       last = s;
       std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
