@@ -4,6 +4,8 @@
 // the first level k and the last. Progress per step on stderr: one run takes minutes.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,6 +22,9 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
   for (auto _ : state) {
     DirectOptions options;
     options.max_steps = max_steps;
+    // STRICTMIN_DIRECT_MAX_STEPS: another cap on the levels (0: none), e.g. the bar to the end.
+    if (const char* v = std::getenv("STRICTMIN_DIRECT_MAX_STEPS"))
+      options.max_steps = std::atoi(v) > 0 ? std::atoi(v) : 100000;
     // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
     if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
     // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
@@ -37,6 +42,11 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
   state.counters["solves"] = last.solves;
   state.counters["k_first"] = r.history.empty() ? 0.0 : r.history.front().max_distortion;
   state.counters["k_last"] = r.history.empty() ? 0.0 : r.history.back().max_distortion;
+  double worst_gap = 0;  // the largest certified gap of a level (the summary's worst_level_gap)
+  for (const IterationRecord& rec : r.history)
+    if (std::isfinite(rec.gap)) worst_gap = std::max(worst_gap, rec.gap);
+  state.counters["worst_level_gap"] = worst_gap;
+  if (!r.message.empty()) std::fprintf(stderr, "direct: %s\n", r.message.c_str());
   if (!r.ok()) state.SkipWithError(("not solved: " + r.message).c_str());
 }
 

@@ -1,5 +1,7 @@
 #include "solver_options.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "strictmin/io/input_error.h"
@@ -101,6 +103,14 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
       (o.method == Method::Relax && o.relax_init == Method::Linf))
     s["lower_bound"] = number_or_null(r.lower_bound);
   if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
+  if (o.method == Method::Direct) {
+    // The largest certified gap of a level (relative, as --gap): below delta-k / 4 every
+    // level's band of fixed elements is where Algorithm 2 puts it.
+    double worst = 0;
+    for (const IterationRecord& rec : r.history)
+      if (std::isfinite(rec.gap)) worst = std::max(worst, rec.gap);
+    s["worst_level_gap"] = worst;
+  }
   if (o.method == Method::Relax) {
     s["sweeps"] = r.iterations;
     s["init"] = method_name(o.relax_init);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -189,6 +190,68 @@ TEST(Direct, LevelsAfterTheFirstStopAtTheLevelGap) {
   EXPECT_EQ(compare_strict(loose.distortion, linf.distortion, p.weights, o.delta_k).order, StrictOrder::Less);
   std::printf("levels: %d (level gap delta-k / 100), %d (1e-8), in %.2f s and %.2f s\n", loose.iterations,
               tight.iterations, loose.time_s, tight.time_s);
+}
+
+// A level whose solve stops short (numerical-error) still leaves a feasible map: direct goes
+// on from it, records the level's certified gap and says so in the message; only a map that
+// is not finite stops it, with the level's status and the previous level's map.
+TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
+  const Problem p = test_support::random_target_bar();
+  DirectOptions o;
+  o.k_min = 0;
+  o.moving_rings = 0;  // every level sees the whole problem: the injected solver below
+  int calls = 0;
+  const double widened = 0.05;  // the stalled level's lower bound sits this far below its k
+  o.level_solver = [&](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
+    Problem q = level;
+    q.positions = X;
+    Result r = solve_linf(q, lo);
+    if (++calls == 3) {
+      r.status = SolveStatus::NumericalError;
+      r.message = "the certified gap stopped improving";
+      r.lower_bound -= widened;
+    }
+    return r;
+  };
+  const Result r = solve_direct(p, o);
+  EXPECT_TRUE(r.ok()) << r.message;
+  EXPECT_GT(r.iterations, 3);
+  ASSERT_GE(r.history.size(), 3u);
+  EXPECT_NEAR(r.history[2].gap, widened, 1e-6);  // values below 1: the gap is absolute
+  for (size_t i = 0; i < r.history.size(); ++i) {
+    if (i == 2) continue;
+    EXPECT_LE(r.history[i].gap, 1e-2 * o.delta_k + 1e-9) << i;
+  }
+  EXPECT_NE(r.message.find("direct step 3"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("reduced accuracy"), std::string::npos) << r.message;
+  // Levels still come down after it, and the result still beats L-infinity in the strict order.
+  for (size_t i = 1; i < r.history.size(); ++i)
+    EXPECT_LE(r.history[i].max_distortion, r.history[i - 1].max_distortion + 1e-9) << i;
+  const Result linf = solve_linf(p);
+  EXPECT_EQ(compare_strict(r.distortion, linf.distortion, p.weights, o.delta_k).order, StrictOrder::Less);
+
+  // A level that returns a non-finite map: direct stops there with its status and keeps the
+  // map of the level before.
+  calls = 0;
+  Eigen::MatrixXd second_level;
+  o.level_solver = [&](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
+    Problem q = level;
+    q.positions = X;
+    Result s = solve_linf(q, lo);
+    if (++calls == 2) second_level = s.positions;
+    if (calls == 3) {
+      s.status = SolveStatus::NumericalError;
+      s.message = "the Newton direction is not finite";
+      s.positions.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    return s;
+  };
+  const Result stopped = solve_direct(p, o);
+  EXPECT_EQ(stopped.status, SolveStatus::NumericalError);
+  EXPECT_EQ(stopped.iterations, 2);
+  EXPECT_TRUE(stopped.positions.allFinite());
+  EXPECT_LT((stopped.positions - second_level).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_NE(stopped.message.find("direct step 3"), std::string::npos) << stopped.message;
 }
 
 TEST(Exact, RefusesLargeMeshes) {

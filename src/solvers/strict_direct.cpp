@@ -83,28 +83,33 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     } else {
       r = solve_restricted_level(p, movable, bounds, out, linf, options, solve_level, moved_vertices);
     }
-    if (step == 1) out.lower_bound = r.lower_bound;
-    out.positions = r.positions;
-    out.distortion = r.distortion;
+    // This level's k over the free elements, and how well the solve certified it.
+    double reached = r.distortion.size() ? 0.0 : INFINITY;
+    for (int e = 0; e < r.distortion.size(); ++e)
+      if (movable[e] && bounds(e) < 0) reached = std::max(reached, r.distortion(e));
+    const double gap = (reached - r.lower_bound) / std::max(1.0, std::abs(reached));
     if (r.status != SolveStatus::Solved) {
-      // A level whose solve stopped short still leaves a feasible map. If its certified gap
-      // is well below delta_k (a quarter of it), the level is known well enough to fix
-      // elements within delta_k of it (the band is then off by at most a quarter of its
-      // width): go on, and say so. Otherwise stop with the solver's status.
-      double reached = r.distortion.size() ? 0.0 : INFINITY;  // this level's k, over the free elements
-      for (int e = 0; e < r.distortion.size(); ++e)
-        if (movable[e] && bounds(e) < 0) reached = std::max(reached, r.distortion(e));
-      const double gap = (reached - r.lower_bound) / std::max(1.0, std::abs(reached));
-      const bool usable = r.status == SolveStatus::MaxIterations ||
-                          (r.status == SolveStatus::NumericalError && r.positions.allFinite() &&
-                           std::isfinite(gap) && gap <= 0.25 * options.delta_k);
+      // A level whose solve stopped short still leaves a map that meets every fixed bound
+      // (the interior-point iterates stay feasible for them to the solver's tolerance, and
+      // the bounds are widened to what it reached below): the levels after it remain
+      // well-defined, only this level's value is known less precisely (its certified gap).
+      // Go on and say so; stop only on a map that is not finite. max-iterations (a limit the
+      // caller set) is passed on as the status.
+      const bool usable = r.positions.allFinite() && r.distortion.size() == p.num_elements() &&
+                          r.distortion.allFinite() && std::isfinite(reached);
       if (!usable || r.status == SolveStatus::MaxIterations) out.status = r.status;
       if (!out.message.empty()) out.message += "; ";
       out.message += "direct step " + std::to_string(step) + ": " + r.message;
-      if (usable && r.status == SolveStatus::NumericalError)
-        out.message += " (used: the certified gap is below delta_k / 4)";
+      if (usable && r.status == SolveStatus::NumericalError) {
+        out.message += gap <= 0.25 * options.delta_k ? " (used: the certified gap is below delta_k / 4)"
+                                                     : " (used with reduced accuracy: the level's value is certified "
+                                                       "to within its gap only)";
+      }
       if (!usable) break;
     }
+    if (step == 1) out.lower_bound = r.lower_bound;
+    out.positions = r.positions;
+    out.distortion = r.distortion;
     // The interior-point map meets the fixed bounds only to the solver's tolerance; widen
     // them to what it reached so that it stays an exact witness of feasibility.
     for (int e = 0; e < p.num_elements(); ++e)
@@ -130,6 +135,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     rec.iteration = step;
     rec.max_distortion = k;
     rec.lower_bound = r.lower_bound;
+    rec.gap = gap;
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
     if (options.progress) {

@@ -33,6 +33,17 @@ class Deform(unittest.TestCase):
         self.assertGreater(s["max_distortion"], s["l2_distortion"])
         self.assertEqual(p.stderr, "", "--quiet prints nothing")
 
+    def test_square_direct_summary_levels_and_worst_level_gap(self):
+        p = run("deform", "--example", "square", "--method", "direct", "--summary", "-", "--quiet", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertEqual(s["status"], "solved")
+        self.assertGreaterEqual(s["levels"], 2)
+        # Paper Figure 2: the top level is 0.3; the levels after it stop at delta-k / 100.
+        self.assertAlmostEqual(s["max_distortion"], 0.3, delta=1e-6)
+        self.assertLessEqual(s["lower_bound"], s["max_distortion"])
+        self.assertLessEqual(s["worst_level_gap"], 1e-3 / 4)
+        self.assertGreaterEqual(s["worst_level_gap"], 0.0)
+
     def test_outputs_and_distortion_file(self):
         out = os.path.join(self.dir, "bar.ply")
         dist = os.path.join(self.dir, "bar.txt")

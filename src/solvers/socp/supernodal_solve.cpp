@@ -1,61 +1,117 @@
 #include "strictmin/solvers/socp/supernodal_solve.h"
 
+#include <vector>
+
+// The substitutions are memory-bound loops over the factor: on x86-64 they are compiled for
+// AVX2 as well and the loader picks the variant the processor runs (the binary stays portable).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define STRICTMIN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define STRICTMIN_VECTOR_CLONES
+#endif
+
 namespace strictmin::socp {
+namespace {
+
+struct Supernode {
+  int first;          // first column (and row) of the supernode
+  int cols;           // its width
+  int rows;           // rows of its block (the columns themselves first)
+  const int* index;   // the block's row indices
+  const double* val;  // the block, column-major, leading dimension `rows`
+};
+
+struct SupernodalView {
+  const int *super, *pi, *px, *s;
+  const double* lx;
+  long count;
+  explicit SupernodalView(const cholmod_factor& L)
+      : super(static_cast<const int*>(L.super)),
+        pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)),
+        s(static_cast<const int*>(L.s)),
+        lx(static_cast<const double*>(L.x)),
+        count(static_cast<long>(L.nsuper)) {}
+  Supernode operator[](long k) const {
+    return {super[k], super[k + 1] - super[k], pi[k + 1] - pi[k], s + pi[k], lx + px[k]};
+  }
+};
+
+// Workspace for the rows below one supernode, kept per thread (the halves of SplitCholesky
+// substitute on two threads at once).
+double* below_buffer(int size) {
+  thread_local std::vector<double> buffer;
+  if (static_cast<int>(buffer.size()) < size) buffer.resize(static_cast<size_t>(size) * 2);
+  return buffer.data();
+}
+
+}  // namespace
 
 bool supports_supernodal_solve(const cholmod_factor& L) {
   return L.is_super && L.is_ll && L.xtype == CHOLMOD_REAL && L.dtype == CHOLMOD_DOUBLE && L.itype == CHOLMOD_INT;
 }
 
+STRICTMIN_VECTOR_CLONES
 void supernodal_forward(const cholmod_factor& L, double* x) {
-  const int* super = static_cast<const int*>(L.super);
-  const int* pi = static_cast<const int*>(L.pi);
-  const int* px = static_cast<const int*>(L.px);
-  const int* s = static_cast<const int*>(L.s);
-  const double* lx = static_cast<const double*>(L.x);
-  const long nsuper = static_cast<long>(L.nsuper);
-  for (long k = 0; k < nsuper; ++k) {
-    const int k1 = super[k], nscol = super[k + 1] - k1;
-    const int nsrow = pi[k + 1] - pi[k];
-    const int* rows = s + pi[k];
-    const double* block = lx + px[k];
-    // Column by column: solve for x[k1 + j], then update every row below it.
-    for (int j = 0; j < nscol; ++j) {
-      const double* column = block + static_cast<long>(j) * nsrow;
-      const double xj = x[k1 + j] / column[j];
-      x[k1 + j] = xj;
-      for (int i = j + 1; i < nscol; ++i) x[k1 + i] -= column[i] * xj;
-      for (int i = nscol; i < nsrow; ++i) x[rows[i]] -= column[i] * xj;
+  const SupernodalView view(L);
+  for (long k = 0; k < view.count; ++k) {
+    const Supernode sn = view[k];
+    double* xs = x + sn.first;
+    // The dense triangle: x_j = x_j / L_jj, then the columns' rows inside the supernode.
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows;
+      const double xj = xs[j] / column[j];
+      xs[j] = xj;
+      for (int i = j + 1; i < sn.cols; ++i) xs[i] -= column[i] * xj;
     }
+    // The rows below: accumulate every column's update in a contiguous buffer (one vector
+    // loop per column), then scatter once per row instead of once per column and row.
+    const int below = sn.rows - sn.cols;
+    if (below == 0) continue;
+    double* acc = below_buffer(below);
+    {
+      const double* column = sn.val + sn.cols;
+      const double xj = xs[0];
+      for (int i = 0; i < below; ++i) acc[i] = column[i] * xj;
+    }
+    for (int j = 1; j < sn.cols; ++j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows + sn.cols;
+      const double xj = xs[j];
+      for (int i = 0; i < below; ++i) acc[i] += column[i] * xj;
+    }
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) x[index[i]] -= acc[i];
   }
 }
 
+STRICTMIN_VECTOR_CLONES
 void supernodal_backward(const cholmod_factor& L, double* x) {
-  const int* super = static_cast<const int*>(L.super);
-  const int* pi = static_cast<const int*>(L.pi);
-  const int* px = static_cast<const int*>(L.px);
-  const int* s = static_cast<const int*>(L.s);
-  const double* lx = static_cast<const double*>(L.x);
-  for (long k = static_cast<long>(L.nsuper) - 1; k >= 0; --k) {
-    const int k1 = super[k], nscol = super[k + 1] - k1;
-    const int nsrow = pi[k + 1] - pi[k];
-    const int* rows = s + pi[k];
-    const double* block = lx + px[k];
-    // Row j of L^T is column j of L: x_j = (x_j - sum_{i > j} L_ij x_i) / L_jj, the x_i
-    // below the supernode already final (later supernodes), those inside it for i > j.
-    for (int j = nscol - 1; j >= 0; --j) {
-      const double* column = block + static_cast<long>(j) * nsrow;
-      // Four partial sums: one would chain every multiply-add on the previous one.
+  const SupernodalView view(L);
+  for (long k = view.count - 1; k >= 0; --k) {
+    const Supernode sn = view[k];
+    double* xs = x + sn.first;
+    // Row j of L^T is column j of L: x_j = (x_j - sum_{i > j} L_ij x_i) / L_jj, the x_i below
+    // the supernode already final (later supernodes): gather them once.
+    const int below = sn.rows - sn.cols;
+    double* xb = below_buffer(below);
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) xb[i] = x[index[i]];
+    for (int j = sn.cols - 1; j >= 0; --j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows;
+      const double* rect = column + sn.cols;
+      // Four partial sums: one would chain every multiply-add on the previous one (and the
+      // compiler may not reassociate a floating-point sum to vectorise it).
       double t0 = 0, t1 = 0, t2 = 0, t3 = 0;
-      int i = nscol;
-      for (; i + 3 < nsrow; i += 4) {
-        t0 += column[i] * x[rows[i]];
-        t1 += column[i + 1] * x[rows[i + 1]];
-        t2 += column[i + 2] * x[rows[i + 2]];
-        t3 += column[i + 3] * x[rows[i + 3]];
+      int i = 0;
+      for (; i + 3 < below; i += 4) {
+        t0 += rect[i] * xb[i];
+        t1 += rect[i + 1] * xb[i + 1];
+        t2 += rect[i + 2] * xb[i + 2];
+        t3 += rect[i + 3] * xb[i + 3];
       }
-      for (; i < nsrow; ++i) t0 += column[i] * x[rows[i]];
-      for (i = j + 1; i < nscol; ++i) t1 += column[i] * x[k1 + i];
-      x[k1 + j] = (x[k1 + j] - ((t0 + t1) + (t2 + t3))) / column[j];
+      for (; i < below; ++i) t0 += rect[i] * xb[i];
+      for (i = j + 1; i < sn.cols; ++i) t1 += column[i] * xs[i];
+      xs[j] = (xs[j] - ((t0 + t1) + (t2 + t3))) / column[j];
     }
   }
 }
