@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -37,6 +38,11 @@ using bench::square_problem;
 LinfOptions bench_options() {
   LinfOptions o;
   if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
+  if (o.verbose)
+    o.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,
+                   r.lower_bound, r.gap, r.time_s);
+    };
   return o;
 }
 

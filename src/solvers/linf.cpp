@@ -337,14 +337,14 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     if (!std::isfinite(best_gap)) return false;  // no iterate meets the constraints yet
     if (best_gap <= options.gap_tolerance * std::max(1.0, std::abs(ms.k))) return true;
     // Stalled: the certified gap has not shrunk by 10% in 4 iterations while the Newton
-    // directions are unreliable (round-off dominates); 2 iterations once the method's own
+    // directions are unreliable (round-off dominates); 1 iteration once the method's own
     // gap is below the tolerance (its dual iterates then only degrade: bimba_89k's dual
     // residual grows from 5e-7 to 4e-5 over the iterations after that).
     const bool ipm_converged = info.gap <= options.gap_tolerance * std::max(1.0, std::abs(info.pobj));
     if (best_gap < 0.9 * ms.last_progress_gap) {
       ms.last_progress_gap = best_gap;
       ms.last_progress_iteration = info.iteration;
-    } else if (info.iteration - ms.last_progress_iteration >= (ipm_converged ? 2 : 4) && info.kkt_residual > 1e-3) {
+    } else if (info.iteration - ms.last_progress_iteration >= (ipm_converged ? 1 : 4) && info.kkt_residual > 1e-3) {
       ms.stalled = true;
       return true;
     }
