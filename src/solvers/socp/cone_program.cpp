@@ -90,23 +90,8 @@ void ConeProgram::apply_m(const Eigen::VectorXd& x, double k, bool with_offset, 
   out.resize(cone_size());
   with_element_sizes(n, m, [&](auto n_c, auto m_c) {
     parallel_for_index(E, kGrain, [&](int begin, int end) {
-      const int nn = n_c, mm = m_c, c = mm + 1, tt = nn * mm;
-      for (int i = begin; i < end; ++i) {
-        double* o = out.data() + static_cast<Eigen::Index>(i) * (tt + 1);
-        o[0] = head_a[i] * k + (with_offset ? head_b[i] : 0.0);
-        double* tail = o + 1;
-        const double* hi = h.data() + static_cast<Eigen::Index>(i) * tt;
-        for (int a = 0; a < tt; ++a) tail[a] = with_offset ? -hi[a] : 0.0;
-        for (int j = 0; j < c; ++j) {
-          const int base = dof_base[i * c + j];
-          if (base < 0) continue;
-          const double* g = grad.data() + (static_cast<size_t>(i) * c + j) * mm;
-          for (int r = 0; r < nn; ++r) {
-            const double xr = x[base + r];
-            for (int col = 0; col < mm; ++col) tail[r * mm + col] += xr * g[col];
-          }
-        }
-      }
+      const Eigen::Index d = static_cast<int>(n_c) * static_cast<int>(m_c) + 1;
+      for (int i = begin; i < end; ++i) element_m(*this, n_c, m_c, i, x.data(), k, with_offset, out.data() + i * d);
     });
   });
   if (has_scalar) out[cone_offset(E)] = head_a[E] * k + (with_offset ? head_b[E] : 0.0);

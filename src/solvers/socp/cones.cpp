@@ -76,6 +76,67 @@ void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const 
   });
 }
 
+void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::VectorXd& dx, double dk,
+                          const Eigen::VectorXd* rc, Eigen::VectorXd* dz, const Eigen::VectorXd* rs,
+                          Eigen::VectorXd* ds, Eigen::VectorXd* dst, Eigen::VectorXd* dzt) {
+  constexpr int kMaxDim = 16;  // element cones have at most 10 entries (tets)
+  const Eigen::Index size = p.cone_size();
+  const bool make_dz = rc && dz, make_ds = rs && ds;
+  if (p.t() + 1 > kMaxDim) {  // unusual element sizes: one pass per operation
+    Eigen::VectorXd m, t;
+    p.apply_m(dx, dk, false, m);
+    if (make_dz) {
+      apply_scaling(p, sc, ScalingOp::WInv, m, t);
+      t = *rc - t;
+      apply_scaling(p, sc, ScalingOp::WInv, t, *dz);
+    }
+    if (make_ds) {
+      *ds = m - *rs;
+      if (dst) apply_scaling(p, sc, ScalingOp::WInv, *ds, *dst);
+    }
+    if (dzt) apply_scaling(p, sc, ScalingOp::W, *dz, *dzt);
+    return;
+  }
+  if (make_dz) dz->resize(size);
+  if (make_ds) ds->resize(size);
+  if (make_ds && dst) dst->resize(size);
+  if (dzt) dzt->resize(size);
+  // One cone: m given (d entries) at offset o.
+  auto finish = [&](int i, Eigen::Index o, int d, const double* m) {
+    double t[kMaxDim];
+    const double beta = sc.beta[i];
+    const double* w = sc.w.data() + o;
+    if (make_dz) {
+      apply_winv(beta, w, d, m, t);
+      const double* r = rc->data() + o;
+      for (int a = 0; a < d; ++a) t[a] = r[a] - t[a];
+      apply_winv(beta, w, d, t, dz->data() + o);
+    }
+    if (make_ds) {
+      double* s = ds->data() + o;
+      const double* r = rs->data() + o;
+      for (int a = 0; a < d; ++a) s[a] = m[a] - r[a];
+      if (dst) apply_winv(beta, w, d, s, dst->data() + o);
+    }
+    if (dzt) apply_w(beta, w, d, dz->data() + o, dzt->data() + o);
+  };
+  const int E = p.num_element_cones();
+  with_element_sizes(p.n, p.m, [&](auto n_c, auto m_c) {
+    parallel_for_index(E, kGrain, [&](int begin, int end) {
+      const int d = static_cast<int>(n_c) * static_cast<int>(m_c) + 1;
+      double m[kMaxDim];
+      for (int i = begin; i < end; ++i) {
+        element_m(p, n_c, m_c, i, dx.data(), dk, false, m);
+        finish(i, static_cast<Eigen::Index>(i) * d, d, m);
+      }
+    });
+  });
+  if (p.has_scalar) {
+    const double m = p.head_a[E] * dk;
+    finish(E, p.cone_offset(E), 1, &m);
+  }
+}
+
 void cone_product(const ConeProgram& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) {
   out.resize(p.cone_size());
   for_each_cone(p, [&](int, Eigen::Index o, int d) { jordan_product(a.data() + o, b.data() + o, d, out.data() + o); });

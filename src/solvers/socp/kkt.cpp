@@ -464,7 +464,7 @@ void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, co
                                       Eigen::VectorXd& dz, double threshold, int& steps) const {
   // dz = W^{-1} (rc - W^{-1} M dv);  (H + P) dv + A~^T w = M^T W^{-1} rc - rd,  A~ dv = re,
   // the equalities by the penalty: w = (A dx - re) / rho.
-  Eigen::VectorXd t, r1x, mv;
+  Eigen::VectorXd t, r1x;
   apply_scaling(p_, *scaling_, ScalingOp::WInv, rc, t);
   double r1k = 0;
   p_.apply_mt(t, r1x, r1k);
@@ -476,10 +476,7 @@ void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, co
     w = inv_rho_ * (p_.A * dx - re);
   else
     w.resize(0);
-  p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
-  apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, t);
-  t = rc - t;
-  apply_scaling(p_, *scaling_, ScalingOp::WInv, t, dz);
+  cone_direction_parts(p_, *scaling_, dx, p_.has_k ? dk : 0.0, &rc, &dz, nullptr, nullptr, nullptr, nullptr);
 }
 
 void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx,
@@ -528,10 +525,7 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   if (tolerance > 0 && outer == 0 && settings_.verbose < 2) {
     d.residual = 0;
     d.dy.resize(0);
-    p_.apply_m(d.dx, p_.has_k ? d.dk : 0.0, false, mv);
-    d.ds = mv - rs;
-    apply_scaling(p_, sc, ScalingOp::WInv, d.ds, d.dst);
-    apply_scaling(p_, sc, ScalingOp::W, d.dz, d.dzt);
+    cone_direction_parts(p_, sc, d.dx, p_.has_k ? d.dk : 0.0, nullptr, &d.dz, &rs, &d.ds, &d.dst, &d.dzt);
     return;
   }
   double best = residual();
@@ -555,10 +549,7 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   d.residual = best;
   d.dy = -w;
   // Cone parts: ds from the (linear) primal equation, scaled forms for the step.
-  p_.apply_m(d.dx, p_.has_k ? d.dk : 0.0, false, mv);
-  d.ds = mv - rs;
-  apply_scaling(p_, sc, ScalingOp::WInv, d.ds, d.dst);
-  apply_scaling(p_, sc, ScalingOp::W, d.dz, d.dzt);
+  cone_direction_parts(p_, sc, d.dx, p_.has_k ? d.dk : 0.0, nullptr, &d.dz, &rs, &d.ds, &d.dst, &d.dzt);
 }
 
 }  // namespace strictmin::socp

@@ -81,6 +81,28 @@ struct ConeProgram {
   double constant_term() const;
 };
 
+// Element cone i of M (x, k), or of M (x, k) + o with_offset: out[0] = a_i k (+ b_i),
+// out[1 .. t] = G_i x (- h_i). n_c and m_c are the element sizes, as compile-time constants
+// where with_element_sizes (fixed_sizes.h) provides them, so that the loops unroll.
+template <class NC, class MC>
+inline void element_m(const ConeProgram& p, NC n_c, MC m_c, int i, const double* x, double k, bool with_offset,
+                      double* out) {
+  const int nn = n_c, mm = m_c, c = mm + 1, tt = nn * mm;
+  out[0] = p.head_a[i] * k + (with_offset ? p.head_b[i] : 0.0);
+  double* tail = out + 1;
+  const double* hi = p.h.data() + static_cast<Eigen::Index>(i) * tt;
+  for (int a = 0; a < tt; ++a) tail[a] = with_offset ? -hi[a] : 0.0;
+  for (int j = 0; j < c; ++j) {
+    const int base = p.dof_base[static_cast<size_t>(i) * c + j];
+    if (base < 0) continue;
+    const double* g = p.grad.data() + (static_cast<size_t>(i) * c + j) * mm;
+    for (int r = 0; r < nn; ++r) {
+      const double xr = x[base + r];
+      for (int col = 0; col < mm; ++col) tail[r * mm + col] += xr * g[col];
+    }
+  }
+}
+
 // Calls body(begin, end) on blocks of [0, count) of at least `grain` indices, on TBB threads.
 void parallel_for_index(int count, int grain, const std::function<void(int, int)>& body);
 

@@ -22,6 +22,16 @@ enum class ScalingOp { W, WInv, WInv2 };
 void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const Eigen::VectorXd& u, Eigen::VectorXd& out);
 
 // Jordan product a o b and the solution of l o out = r, cone by cone.
+// The cone parts of a Newton direction from its (dx, dk), in one pass over the cones
+// instead of one per operation (m = M (dx, dk) is formed per cone and never stored):
+//   with rc, dz:        dz  = W^-1 (rc - W^-1 m)            (the eliminated dz of the system)
+//   with rs, ds, dst:   ds  = m - rs,  dst = W^-1 ds        (the primal step, scaled)
+//   with dzt:           dzt = W dz                          (dz computed here or given)
+// Null pointers skip a part; dz is an input when rc is null.
+void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::VectorXd& dx, double dk,
+                          const Eigen::VectorXd* rc, Eigen::VectorXd* dz, const Eigen::VectorXd* rs,
+                          Eigen::VectorXd* ds, Eigen::VectorXd* dst, Eigen::VectorXd* dzt);
+
 void cone_product(const ConeProgram& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out);
 void cone_arrow_solve(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& r, Eigen::VectorXd& out);
 
