@@ -21,6 +21,7 @@
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/socp/ordering.h"
 #include "strictmin/solvers/socp/soc.h"
+#include "strictmin/solvers/cholmod_view.h"
 #include "strictmin/solvers/socp/split_cholesky.h"
 #include "strictmin/solvers/socp/supernodal_solve.h"
 
@@ -568,17 +569,7 @@ TEST(SupernodalSolve, MatchesCholmodSolve) {
   cholmod_common common;
   cholmod_start(&common);
   common.supernodal = CHOLMOD_SUPERNODAL;
-  cholmod_sparse view{};
-  view.nrow = view.ncol = N;
-  view.nzmax = upper.nonZeros();
-  view.p = upper.outerIndexPtr();
-  view.i = upper.innerIndexPtr();
-  view.x = upper.valuePtr();
-  view.stype = 1;
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = view.packed = 1;
+  cholmod_sparse view = cholmod_view(upper, 1);
   cholmod_factor* L = cholmod_analyze(&view, &common);
   ASSERT_NE(L, nullptr);
   cholmod_factorize(&view, L, &common);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "strictmin/solvers/cholmod_view.h"
+
 namespace strictmin::socp {
 
 namespace {
@@ -25,19 +27,7 @@ struct LowerGraph {
     lower.resize(n, n);
     lower.setFromTriplets(pattern.begin(), pattern.end());
     lower.makeCompressed();
-    A.nrow = A.ncol = n;
-    A.nzmax = lower.nonZeros();
-    A.p = lower.outerIndexPtr();
-    A.i = lower.innerIndexPtr();
-    A.nz = nullptr;
-    A.x = lower.valuePtr();
-    A.z = nullptr;
-    A.stype = -1;
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
+    A = cholmod_view(lower, -1);
   }
 };
 

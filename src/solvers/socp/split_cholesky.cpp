@@ -6,6 +6,7 @@
 #include <limits>
 #include <tbb/parallel_invoke.h>
 
+#include "strictmin/solvers/cholmod_view.h"
 #include "strictmin/solvers/socp/supernodal_solve.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
@@ -44,22 +45,7 @@ struct SplitCholesky::Half {
     cholmod_finish(&common);
   }
 
-  cholmod_sparse view() {
-    cholmod_sparse A;
-    std::memset(&A, 0, sizeof A);
-    A.nrow = A.ncol = B.rows();
-    A.nzmax = B.nonZeros();
-    A.p = B.outerIndexPtr();
-    A.i = B.innerIndexPtr();
-    A.x = B.valuePtr();
-    A.stype = 1;
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
-    return A;
-  }
+  cholmod_sparse view() { return cholmod_view(B, 1); }
 
   bool analyze() {
     cholmod_sparse A = view();
