@@ -93,9 +93,11 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       // (the interior-point iterates stay feasible for them to the solver's tolerance, and
       // the bounds are widened to what it reached below): the levels after it remain
       // well-defined, only this level's value is known less precisely (its certified gap).
-      // Go on and say so; stop only on a map that is not finite. max-iterations (a limit the
-      // caller set) is passed on as the status.
-      const bool usable = r.positions.allFinite() && r.distortion.size() == p.num_elements() &&
+      // Go on and say so; stop on a map that is not finite and on infeasible (the bounds were
+      // met by the previous map: only round-off can say so, and its map is no witness).
+      // max-iterations (a limit the caller set) is passed on as the status.
+      const bool usable = (r.status == SolveStatus::NumericalError || r.status == SolveStatus::MaxIterations) &&
+                          r.positions.allFinite() && r.distortion.size() == p.num_elements() &&
                           r.distortion.allFinite() && std::isfinite(reached);
       if (!usable || r.status == SolveStatus::MaxIterations) out.status = r.status;
       if (!out.message.empty()) out.message += "; ";
