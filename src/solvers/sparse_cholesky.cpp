@@ -4,6 +4,8 @@
 
 #include <mutex>
 
+#include "strictmin/solvers/socp/supernodal_solve.h"
+
 namespace strictmin {
 namespace {
 
@@ -77,8 +79,24 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
-  SerialCholmodScope serial;
-  return llt_->solve(B);
+  const cholmod_factor* L = llt_->factor();
+  if (!L || !socp::supports_supernodal_solve(*L) || llt_->info() != Eigen::Success ||
+      static_cast<Eigen::Index>(L->n) != B.rows()) {
+    SerialCholmodScope serial;
+    return llt_->solve(B);
+  }
+  // L L^T = P A P^T with (P b)_k = b_{Perm[k]}: x = P^T L^-T L^-1 P b.
+  const int* perm = static_cast<const int*>(L->Perm);
+  const Eigen::Index n = B.rows();
+  Eigen::MatrixXd X(n, B.cols());
+  Eigen::VectorXd y(n);
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    for (Eigen::Index k = 0; k < n; ++k) y[k] = B(perm ? perm[k] : k, c);
+    socp::supernodal_forward(*L, y.data());
+    socp::supernodal_backward(*L, y.data());
+    for (Eigen::Index k = 0; k < n; ++k) X(perm ? perm[k] : k, c) = y[k];
+  }
+  return X;
 }
 
 }  // namespace strictmin

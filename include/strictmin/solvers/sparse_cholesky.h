@@ -42,11 +42,16 @@ class SparseCholesky {
   void analyze(const Eigen::SparseMatrix<double>& A);
   // False when A is not (numerically) positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& A);
+  // A^{-1} B, column by column with one-column supernodal substitutions (socp/supernodal_solve.h:
+  // no BLAS call per supernode, no allocation inside), or CHOLMOD's solve for other factors.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   bool analyzed() const { return analyzed_; }
 
  private:
-  using Llt = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+  // Eigen's wrapper, with access to CHOLMOD's factor for our own substitutions.
+  struct Llt : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
+    const cholmod_factor* factor() const { return this->m_cholmodFactor; }
+  };
   std::unique_ptr<Llt> llt_;
   bool analyzed_ = false;
 };
