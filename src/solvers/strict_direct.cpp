@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "strictmin/problem/subproblem.h"
 #include "strictmin/solvers/l2.h"
@@ -47,6 +49,47 @@ Result solve_restricted_level(const Problem& p, const std::vector<char>& movable
   return full;
 }
 
+// The levels whose solve stopped short of its tolerance, for one summary at the end (a long
+// run on a hard problem has hundreds of them: one message each would swamp the summary).
+struct ShortLevels {
+  explicit ShortLevels(double reduced_accuracy) : reduced_accuracy_gap(reduced_accuracy) {}
+  double reduced_accuracy_gap;  // above this certified gap a level is of reduced accuracy
+  int count = 0, numerical = 0, iteration_limit = 0, reduced = 0;
+  int worst_step = 0;
+  double worst_gap = 0, worst_k = 0;
+  SolveStatus worst_status = SolveStatus::Solved;
+  std::string first;  // the first one's message
+
+  void add(int step, const Result& r, double k, double gap) {
+    ++count;
+    if (r.status == SolveStatus::MaxIterations)
+      ++iteration_limit;
+    else
+      ++numerical;
+    if (first.empty()) first = "level " + std::to_string(step) + ": " + r.message;
+    if (gap > reduced_accuracy_gap) ++reduced;
+    if (gap > worst_gap || worst_step == 0) {
+      worst_step = step;
+      worst_gap = gap;
+      worst_k = k;
+      worst_status = r.status;
+    }
+  }
+  // The run's status: solved unless some level is of reduced accuracy (then the status of the
+  // worst one: the map is complete, but that level is known only to within its gap).
+  SolveStatus status() const { return reduced > 0 ? worst_status : SolveStatus::Solved; }
+  std::string message(int levels) const {
+    if (count == 0) return "";
+    char worst[160];
+    std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap, worst_step,
+                  worst_k);
+    return std::to_string(count) + " of " + std::to_string(levels) + " levels stopped short of their tolerance (" +
+           std::to_string(numerical) + " numerical-error, " + std::to_string(iteration_limit) +
+           " max-iterations) and were used; " + std::to_string(reduced) +
+           " of them with reduced accuracy (certified gap above delta_k / 4); " + worst + "; first: " + first;
+  }
+};
+
 }  // namespace
 
 Result solve_direct(const Problem& p, const DirectOptions& options) {
@@ -58,6 +101,8 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
   LinfOptions linf = options.linf;
   linf.progress = nullptr;
   Result out;
+  ShortLevels short_levels(0.25 * options.delta_k);
+  std::string stop_message;  // a level that ended the run
   double k = INFINITY;
   out.positions = options.start.size() ? options.start : p.positions;
   Problem level = p;
@@ -93,21 +138,18 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       // (the interior-point iterates stay feasible for them to the solver's tolerance, and
       // the bounds are widened to what it reached below): the levels after it remain
       // well-defined, only this level's value is known less precisely (its certified gap).
-      // Go on and say so; stop on a map that is not finite and on infeasible (the bounds were
-      // met by the previous map: only round-off can say so, and its map is no witness).
-      // max-iterations (a limit the caller set) is passed on as the status.
+      // Use it and go on; the summary says how many and how far off. Stop on a map that is
+      // not finite and on infeasible (the bounds were met by the previous map: only round-off
+      // can say so, and its map is no witness).
       const bool usable = (r.status == SolveStatus::NumericalError || r.status == SolveStatus::MaxIterations) &&
                           r.positions.allFinite() && r.distortion.size() == p.num_elements() &&
                           r.distortion.allFinite() && std::isfinite(reached);
-      if (!usable || r.status == SolveStatus::MaxIterations) out.status = r.status;
-      if (!out.message.empty()) out.message += "; ";
-      out.message += "direct step " + std::to_string(step) + ": " + r.message;
-      if (usable && r.status == SolveStatus::NumericalError) {
-        out.message += gap <= 0.25 * options.delta_k ? " (used: the certified gap is below delta_k / 4)"
-                                                     : " (used with reduced accuracy: the level's value is certified "
-                                                       "to within its gap only)";
+      if (!usable) {
+        out.status = r.status;
+        stop_message = "direct stopped at level " + std::to_string(step) + ": " + r.message;
+        break;
       }
-      if (!usable) break;
+      short_levels.add(step, r, reached, gap);
     }
     if (step == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
@@ -153,6 +195,10 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       options.progress(info);
     }
   }
+  if (out.status == SolveStatus::Solved) out.status = short_levels.status();
+  out.message = stop_message;
+  const std::string levels = short_levels.message(out.iterations);
+  if (!levels.empty()) out.message += (out.message.empty() ? "" : "; ") + levels;
   out.time_s = seconds_since(t0);
   return out;
 }
