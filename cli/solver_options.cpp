@@ -106,10 +106,10 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
   if (o.method == Method::Direct) {
     // The largest certified gap of a level (relative, as --gap): below delta-k / 4 every
     // level's band of fixed elements is where Algorithm 2 puts it.
+    // null when a level has no certified bound (its accuracy is unknown).
     double worst = 0;
-    for (const IterationRecord& rec : r.history)
-      if (std::isfinite(rec.gap)) worst = std::max(worst, rec.gap);
-    s["worst_level_gap"] = worst;
+    for (const IterationRecord& rec : r.history) worst = std::isnan(rec.gap) ? INFINITY : std::max(worst, rec.gap);
+    s["worst_level_gap"] = number_or_null(worst);
   }
   if (o.method == Method::Relax) {
     s["sweeps"] = r.iterations;

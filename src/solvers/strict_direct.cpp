@@ -60,7 +60,9 @@ struct ShortLevels {
   SolveStatus worst_status = SolveStatus::Solved;
   std::string first;  // the first one's message
 
-  void add(int step, const Result& r, double k, double gap) {
+  void add(int step, const Result& r, double k, double certified_gap) {
+    // A level without a certified bound is of unknown accuracy: count it as the worst.
+    const double gap = std::isnan(certified_gap) ? INFINITY : certified_gap;
     ++count;
     if (r.status == SolveStatus::MaxIterations)
       ++iteration_limit;
