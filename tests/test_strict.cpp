@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <limits>
 #include <random>
 
@@ -192,6 +194,22 @@ TEST(Direct, LevelsAfterTheFirstStopAtTheLevelGap) {
               tight.iterations, loose.time_s, tight.time_s);
 }
 
+// A level solver for direct that solves every level with solve_linf, keeps the map of
+// level `keep` in *kept, and lets `damage` alter the result of level `damaged`.
+LevelSolver injected_level_solver(int damaged, std::function<void(Result&)> damage, int keep = 0,
+                                  Eigen::MatrixXd* kept = nullptr) {
+  auto calls = std::make_shared<int>(0);
+  return [=](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
+    Problem q = level;
+    q.positions = X;
+    Result r = solve_linf(q, lo);
+    ++*calls;
+    if (*calls == keep && kept) *kept = r.positions;
+    if (*calls == damaged) damage(r);
+    return r;
+  };
+}
+
 // A level whose solve stops short (numerical-error) still leaves a feasible map: direct goes
 // on from it to the end, records the level's certified gap, and reports the run as
 // numerical-error when that gap is above delta-k / 4 (reduced accuracy), with one summary of
@@ -202,19 +220,15 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
   DirectOptions o;
   o.k_min = 0;
   o.moving_rings = 0;  // every level sees the whole problem: the injected solver below
-  int calls = 0;
-  const double widened = 0.05;  // the stalled level's lower bound sits this far below its k
-  o.level_solver = [&](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
-    Problem q = level;
-    q.positions = X;
-    Result r = solve_linf(q, lo);
-    if (++calls == 3) {
+  auto stall = [](double widen) {
+    return [widen](Result& r) {
       r.status = SolveStatus::NumericalError;
       r.message = "the certified gap stopped improving";
-      r.lower_bound -= widened;
-    }
-    return r;
+      r.lower_bound -= widen;  // the stalled level's bound this far below its k
+    };
   };
+  const double widened = 0.05;
+  o.level_solver = injected_level_solver(3, stall(widened));
   const Result r = solve_direct(p, o);
   EXPECT_EQ(r.status, SolveStatus::NumericalError) << r.message;
   EXPECT_GT(r.iterations, 3);
@@ -237,20 +251,15 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
 
   // A level that returns a non-finite map: direct stops there with its status and keeps the
   // map of the level before.
-  calls = 0;
   Eigen::MatrixXd second_level;
-  o.level_solver = [&](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
-    Problem q = level;
-    q.positions = X;
-    Result s = solve_linf(q, lo);
-    if (++calls == 2) second_level = s.positions;
-    if (calls == 3) {
-      s.status = SolveStatus::NumericalError;
-      s.message = "the Newton direction is not finite";
-      s.positions.setConstant(std::numeric_limits<double>::quiet_NaN());
-    }
-    return s;
-  };
+  o.level_solver = injected_level_solver(
+      3,
+      [](Result& s) {
+        s.status = SolveStatus::NumericalError;
+        s.message = "the Newton direction is not finite";
+        s.positions.setConstant(std::numeric_limits<double>::quiet_NaN());
+      },
+      2, &second_level);
   const Result stopped = solve_direct(p, o);
   EXPECT_EQ(stopped.status, SolveStatus::NumericalError);
   EXPECT_EQ(stopped.iterations, 2);
@@ -259,18 +268,7 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
   EXPECT_NE(stopped.message.find("direct stopped at level 3"), std::string::npos) << stopped.message;
 
   // A level that stops short within delta-k / 4 is used and the run counts as solved.
-  calls = 0;
-  o.level_solver = [&](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
-    Problem q = level;
-    q.positions = X;
-    Result s = solve_linf(q, lo);
-    if (++calls == 3) {
-      s.status = SolveStatus::NumericalError;
-      s.message = "the certified gap stopped improving";
-      s.lower_bound -= 0.1 * o.delta_k;
-    }
-    return s;
-  };
+  o.level_solver = injected_level_solver(3, stall(0.1 * o.delta_k));
   const Result close = solve_direct(p, o);
   EXPECT_TRUE(close.ok()) << close.message;
   EXPECT_NE(close.message.find("0 of them with reduced accuracy"), std::string::npos) << close.message;
