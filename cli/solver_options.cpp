@@ -89,6 +89,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
       std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d", s.step, s.k, s.fixed_now,
                    s.fixed_total, s.solves);
       if (s.level_free_vertices >= 0) std::fprintf(stderr, "  moving vertices %d", s.level_free_vertices);
+      if (s.level_iterations > 0) std::fprintf(stderr, "  %d interior-point iterations", s.level_iterations);
       std::fprintf(stderr, "  %.2f s\n", s.time_s);
     };
     o.direct.progress = strict_progress;
