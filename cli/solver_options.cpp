@@ -1,7 +1,5 @@
 #include "solver_options.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "strictmin/io/input_error.h"
@@ -104,14 +102,9 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
       (o.method == Method::Relax && o.relax_init == Method::Linf))
     s["lower_bound"] = number_or_null(r.lower_bound);
   if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
-  if (o.method == Method::Direct) {
-    // The largest certified gap of a level (relative, as --gap): below delta-k / 4 every
-    // level's band of fixed elements is where Algorithm 2 puts it.
-    // null when a level has no certified bound (its accuracy is unknown).
-    double worst = 0;
-    for (const IterationRecord& rec : r.history) worst = std::isnan(rec.gap) ? INFINITY : std::max(worst, rec.gap);
-    s["worst_level_gap"] = number_or_null(worst);
-  }
+  // Below delta-k / 4 every level's band of fixed elements is where Algorithm 2 puts it;
+  // null when a level has no certified bound.
+  if (o.method == Method::Direct) s["worst_level_gap"] = number_or_null(worst_level_gap(r));
   if (o.method == Method::Relax) {
     s["sweeps"] = r.iterations;
     s["init"] = method_name(o.relax_init);

@@ -235,6 +235,7 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
   EXPECT_TRUE(r.positions.allFinite());
   ASSERT_GE(r.history.size(), 3u);
   EXPECT_NEAR(r.history[2].gap, widened, 1e-6);  // values below 1: the gap is absolute
+  EXPECT_NEAR(worst_level_gap(r), widened, 1e-6);
   for (size_t i = 0; i < r.history.size(); ++i) {
     if (i == 2) continue;
     EXPECT_LE(r.history[i].gap, 1e-2 * o.delta_k + 1e-9) << i;

@@ -54,7 +54,7 @@ Result solve_restricted_level(const Problem& p, const std::vector<char>& movable
 struct ShortLevels {
   explicit ShortLevels(double reduced_accuracy) : reduced_accuracy_gap(reduced_accuracy) {}
   double reduced_accuracy_gap;  // above this certified gap a level is of reduced accuracy
-  int count = 0, numerical = 0, iteration_limit = 0, reduced = 0;
+  int numerical = 0, iteration_limit = 0, reduced = 0;
   int worst_step = 0;
   double worst_gap = 0, worst_k = 0;
   SolveStatus worst_status = SolveStatus::Solved;
@@ -63,7 +63,6 @@ struct ShortLevels {
   void add(int step, const Result& r, double k, double certified_gap) {
     // A level without a certified bound is of unknown accuracy: count it as the worst.
     const double gap = std::isnan(certified_gap) ? INFINITY : certified_gap;
-    ++count;
     if (r.status == SolveStatus::MaxIterations)
       ++iteration_limit;
     else
@@ -81,6 +80,7 @@ struct ShortLevels {
   // worst one: the map is complete, but that level is known only to within its gap).
   SolveStatus status() const { return reduced > 0 ? worst_status : SolveStatus::Solved; }
   std::string message(int levels) const {
+    const int count = numerical + iteration_limit;
     if (count == 0) return "";
     char worst[160];
     std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap, worst_step,
@@ -203,6 +203,12 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
   if (!levels.empty()) out.message += (out.message.empty() ? "" : "; ") + levels;
   out.time_s = seconds_since(t0);
   return out;
+}
+
+double worst_level_gap(const Result& direct) {
+  double worst = 0;
+  for (const IterationRecord& rec : direct.history) worst = std::isnan(rec.gap) ? INFINITY : std::max(worst, rec.gap);
+  return worst;
 }
 
 }  // namespace strictmin

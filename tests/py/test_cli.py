@@ -41,8 +41,8 @@ class Deform(unittest.TestCase):
         # Paper Figure 2: the top level is 0.3; the levels after it stop at delta-k / 100.
         self.assertAlmostEqual(s["max_distortion"], 0.3, delta=1e-6)
         self.assertLessEqual(s["lower_bound"], s["max_distortion"])
-        self.assertLessEqual(s["worst_level_gap"], 1e-3 / 4)
-        self.assertGreaterEqual(s["worst_level_gap"], 0.0)
+        # Levels after the first stop at delta-k / 100 = 1e-5 (--level-gap), none stalls here.
+        self.assertLessEqual(s["worst_level_gap"], 1e-5)
 
     def test_outputs_and_distortion_file(self):
         out = os.path.join(self.dir, "bar.ply")

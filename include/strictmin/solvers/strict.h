@@ -65,6 +65,9 @@ struct ExactOptions {
 // Result.iterations = steps (levels); history has one record per step (k in
 // max_distortion); Result.lower_bound = the first level's certified bound.
 Result solve_direct(const Problem& problem, const DirectOptions& options = {});
+// The largest certified gap of a level of solve_direct's result (relative, as --gap; its
+// history's gaps), +inf when a level has no certified bound (its accuracy is unknown).
+double worst_level_gap(const Result& direct);
 // Throws InputError when the problem has more than options.max_elements elements.
 Result solve_exact(const Problem& problem, const ExactOptions& options = {});
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <limits>
+#include <stdexcept>
 #include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
 
@@ -79,24 +80,10 @@ void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const 
 void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::VectorXd& dx, double dk,
                           const Eigen::VectorXd* rc, Eigen::VectorXd* dz, const Eigen::VectorXd* rs,
                           Eigen::VectorXd* ds, Eigen::VectorXd* dst, Eigen::VectorXd* dzt) {
-  constexpr int kMaxDim = 16;  // element cones have at most 10 entries (tets)
+  constexpr int kMaxDim = 16;  // element cones have at most 10 entries (n, m <= 3: tets)
   const Eigen::Index size = p.cone_size();
   const bool make_dz = rc && dz, make_ds = rs && ds;
-  if (p.t() + 1 > kMaxDim) {  // unusual element sizes: one pass per operation
-    Eigen::VectorXd m, t;
-    p.apply_m(dx, dk, false, m);
-    if (make_dz) {
-      apply_scaling(p, sc, ScalingOp::WInv, m, t);
-      t = *rc - t;
-      apply_scaling(p, sc, ScalingOp::WInv, t, *dz);
-    }
-    if (make_ds) {
-      *ds = m - *rs;
-      if (dst) apply_scaling(p, sc, ScalingOp::WInv, *ds, *dst);
-    }
-    if (dzt) apply_scaling(p, sc, ScalingOp::W, *dz, *dzt);
-    return;
-  }
+  if (p.t() + 1 > kMaxDim) throw std::logic_error("cone_direction_parts: element cones above 16 entries");
   if (make_dz) dz->resize(size);
   if (make_ds) ds->resize(size);
   if (make_ds && dst) dst->resize(size);

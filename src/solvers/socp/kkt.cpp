@@ -461,7 +461,7 @@ int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold,
 
 void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc,
                                       const Eigen::VectorXd& re, Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w,
-                                      Eigen::VectorXd& dz, double threshold, int& steps) const {
+                                      Eigen::VectorXd* dz, double threshold, int& steps) const {
   // dz = W^{-1} (rc - W^{-1} M dv);  (H + P) dv + A~^T w = M^T W^{-1} rc - rd,  A~ dv = re,
   // the equalities by the penalty: w = (A dx - re) / rho.
   Eigen::VectorXd t, r1x;
@@ -476,7 +476,7 @@ void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, co
     w = inv_rho_ * (p_.A * dx - re);
   else
     w.resize(0);
-  cone_direction_parts(p_, *scaling_, dx, p_.has_k ? dk : 0.0, &rc, &dz, nullptr, nullptr, nullptr, nullptr);
+  if (dz) cone_direction_parts(p_, *scaling_, dx, p_.has_k ? dk : 0.0, &rc, dz, nullptr, nullptr, nullptr, nullptr);
 }
 
 void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx,
@@ -493,8 +493,20 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   const double scale = std::max({max_abs(rc), max_abs(rdx), std::abs(rdk), max_abs(re), 1e-300});
   const double tol = tolerance > 0 ? tolerance : settings_.refinement_tolerance;
   const double threshold = std::max(tol * scale, 1e-14);
-  solve_unreduced(rdx, rdk, rc, re, d.dx, d.dk, w, d.dz, threshold, steps);
+  // Outer refinement: removes the penalty's effect on the equalities (and any rest).
+  const int outer = p_.num_eq() > 0 ? 3 : 0;
+  // The residual check costs four passes over the cones; auxiliary directions (predictor,
+  // correctors: tolerance given) without equalities skip it (their CG residual is reported)
+  // and form all their cone parts in one pass.
+  const bool unchecked = tolerance > 0 && outer == 0 && settings_.verbose < 2;
+  solve_unreduced(rdx, rdk, rc, re, d.dx, d.dk, w, unchecked ? nullptr : &d.dz, threshold, steps);
   d.refinement = steps;
+  if (unchecked) {
+    d.residual = 0;
+    d.dy.resize(0);
+    cone_direction_parts(p_, sc, d.dx, p_.has_k ? d.dk : 0.0, &rc, &d.dz, &rs, &d.ds, &d.dst, &d.dzt);
+    return;
+  }
   // Residuals of the unreduced system.
   Eigen::VectorXd ex, ec, ee, mv, px, gx, cx, cw, cz;
   double ek = 0, ck = 0;
@@ -518,19 +530,9 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
                    max_abs(ex) / scale, std::abs(ek) / scale, max_abs(ec) / scale, max_abs(ee) / scale, scale, steps);
     return std::max({max_abs(ex), std::abs(ek), max_abs(ec), max_abs(ee)}) / scale;
   };
-  // Outer refinement: removes the penalty's effect on the equalities (and any rest).
-  const int outer = p_.num_eq() > 0 ? 3 : 0;
-  // The residual check costs four passes over the cones; auxiliary directions (predictor,
-  // correctors: tolerance given) without equalities skip it (their CG residual is reported).
-  if (tolerance > 0 && outer == 0 && settings_.verbose < 2) {
-    d.residual = 0;
-    d.dy.resize(0);
-    cone_direction_parts(p_, sc, d.dx, p_.has_k ? d.dk : 0.0, nullptr, &d.dz, &rs, &d.ds, &d.dst, &d.dzt);
-    return;
-  }
   double best = residual();
   for (int step = 0; step < outer && best > tol; ++step) {
-    solve_unreduced(ex, ek, ec, ee, cx, ck, cw, cz, threshold, steps);
+    solve_unreduced(ex, ek, ec, ee, cx, ck, cw, &cz, threshold, steps);
     d.refinement += steps + 1;
     d.dx += cx;
     d.dk += ck;

@@ -21,7 +21,6 @@ enum class ScalingOp { W, WInv, WInv2 };
 // out = op(W) u, cone by cone (out must not alias u).
 void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const Eigen::VectorXd& u, Eigen::VectorXd& out);
 
-// Jordan product a o b and the solution of l o out = r, cone by cone.
 // The cone parts of a Newton direction from its (dx, dk), in one pass over the cones
 // instead of one per operation (m = M (dx, dk) is formed per cone and never stored):
 //   with rc, dz:        dz  = W^-1 (rc - W^-1 m)            (the eliminated dz of the system)
@@ -32,6 +31,7 @@ void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::
                           const Eigen::VectorXd* rc, Eigen::VectorXd* dz, const Eigen::VectorXd* rs,
                           Eigen::VectorXd* ds, Eigen::VectorXd* dst, Eigen::VectorXd* dzt);
 
+// Jordan product a o b and the solution of l o out = r, cone by cone.
 void cone_product(const ConeProgram& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out);
 void cone_arrow_solve(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& r, Eigen::VectorXd& out);
 

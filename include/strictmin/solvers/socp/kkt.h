@@ -89,9 +89,10 @@ class NormalEquations {
   // Preconditioned CG on that system until the residual (max norm) is below threshold;
   // returns the number of CG steps.
   int pcg(const Eigen::VectorXd& bx, double bk, double threshold, Eigen::VectorXd& x, double& k) const;
-  // dv, w and dz for the residuals (rd, rc, re) of the unreduced system (rc scaled: W^{-1} row).
+  // dv, w and dz for the residuals (rd, rc, re) of the unreduced system (rc scaled: W^{-1} row);
+  // dz null: the caller forms it (with the direction's other cone parts, in one pass).
   void solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc, const Eigen::VectorXd& re,
-                       Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w, Eigen::VectorXd& dz, double threshold,
+                       Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w, Eigen::VectorXd* dz, double threshold,
                        int& steps) const;
 
   const ConeProgram& p_;
