@@ -2,11 +2,13 @@
 
 #include <cholmod.h>
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <tbb/parallel_invoke.h>
 
 #include "strictmin/solvers/cholmod_view.h"
+#include "strictmin/solvers/socp/supernodal_factor.h"
 #include "strictmin/solvers/socp/supernodal_solve.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
@@ -29,6 +31,8 @@ struct SplitCholesky::Half {
   cholmod_common common;
   cholmod_factor* L = nullptr;
   std::vector<int> perm;              // CHOLMOD's postorder of the part (separator stays last)
+  SupernodalFactor numeric;           // our numeric factorisation on CHOLMOD's analysis
+  bool own_numeric = false;
   Eigen::MatrixXd T, G;               // trailing factor block Tp and Tp Tp^T (lower)
   // Solve workspace (one solve at a time per half).
   mutable Eigen::VectorXd rhs, y;
@@ -58,18 +62,35 @@ struct SplitCholesky::Half {
     T.setZero(ns, ns);
     G.setZero(ns, ns);
     rhs.resize(n + ns);
+    // B's upper-triangle entries as lower-triangle entries of the permuted matrix.
+    std::vector<int> iperm(n + ns), rows, cols;
+    for (int k = 0; k < n + ns; ++k) iperm[perm[k]] = k;
+    rows.reserve(B.nonZeros());
+    cols.reserve(B.nonZeros());
+    for (int c = 0; c < B.outerSize(); ++c)
+      for (int z = B.outerIndexPtr()[c]; z < B.outerIndexPtr()[c + 1]; ++z) {
+        const int pr = iperm[B.innerIndexPtr()[z]], pc = iperm[c];
+        rows.push_back(std::max(pr, pc));
+        cols.push_back(std::min(pr, pc));
+      }
+    own_numeric = !std::getenv("STRICTMIN_CHOLMOD_NUMERIC") && numeric.setup(L, &common, rows, cols);
     return true;
   }
 
   bool factorize(const double* values) {
     double* bx = B.valuePtr();
     for (size_t k = 0; k < source.size(); ++k) bx[k] = values[source[k]];
-    cholmod_sparse A = view();
-    {
+    if (own_numeric) {
       SerialCholmodScope serial;
-      cholmod_factorize(&A, L, &common);
+      if (!numeric.factorize(bx)) return false;
+    } else {
+      cholmod_sparse A = view();
+      {
+        SerialCholmodScope serial;
+        cholmod_factorize(&A, L, &common);
+      }
+      if (common.status != CHOLMOD_OK || L->minor < L->n) return false;
     }
-    if (common.status != CHOLMOD_OK || L->minor < L->n) return false;
     // The separator's columns: the trailing block of the supernodes that hold them.
     const int* super = static_cast<const int*>(L->super);
     const int* pi = static_cast<const int*>(L->pi);

@@ -1,0 +1,189 @@
+#include "strictmin/solvers/socp/supernodal_factor.h"
+
+#include <algorithm>
+#include <cmath>
+
+extern "C" {
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc);
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
+}
+
+namespace strictmin::socp {
+namespace {
+
+// Below these sizes the loops beat a BLAS call (call overhead, lock and buffer per call).
+constexpr long kBlasUpdateFlops = 16384;  // m1 * m2 * width of an update
+constexpr int kBlasPanelWidth = 24;       // width of a supernode's own factorisation
+
+// In place, column-major with leading dimension ld: the rows x cols panel [A11; A21] of a
+// supernode becomes [L11; L21] with A11 = L11 L11^T, L21 = A21 L11^-T (left-looking by
+// column). False on a pivot that is not positive.
+bool factor_panel_small(double* a, int rows, int cols, int ld) {
+  for (int c = 0; c < cols; ++c) {
+    double* col = a + static_cast<long>(c) * ld;
+    for (int q = 0; q < c; ++q) {
+      const double* prev = a + static_cast<long>(q) * ld;
+      const double f = prev[c];
+      if (f == 0.0) continue;
+      for (int r = c; r < rows; ++r) col[r] -= f * prev[r];
+    }
+    const double d = col[c];
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    const double root = std::sqrt(d), inv = 1.0 / root;
+    col[c] = root;
+    for (int r = c + 1; r < rows; ++r) col[r] *= inv;
+  }
+  return true;
+}
+
+bool factor_panel_blas(double* a, int rows, int cols, int ld) {
+  int info = 0;
+  dpotrf_("L", &cols, a, &ld, &info);
+  if (info != 0) return false;
+  for (int c = 0; c < cols; ++c)
+    if (!std::isfinite(a[static_cast<long>(c) * ld + c])) return false;
+  const int below = rows - cols;
+  if (below > 0) {
+    const double one = 1.0;
+    dtrsm_("R", "L", "T", "N", &below, &cols, &one, a, &ld, a + cols, &ld);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool SupernodalFactor::setup(cholmod_factor* L, cholmod_common* common, const std::vector<int>& row,
+                             const std::vector<int>& col) {
+  if (!L || !L->is_super || L->itype != CHOLMOD_INT || row.size() != col.size()) return false;
+  if (L->xtype == CHOLMOD_PATTERN) cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, L, common);
+  if (!L->x || L->xtype != CHOLMOD_REAL || !L->is_ll) return false;
+  L_ = L;
+  n_ = static_cast<int>(L->n);
+  nsuper_ = static_cast<int>(L->nsuper);
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const int* ls = static_cast<const int*>(L->s);
+  super_of_column_.assign(n_, 0);
+  for (int s = 0; s < nsuper_; ++s)
+    for (int j = super[s]; j < super[s + 1]; ++j) super_of_column_[j] = s;
+  // Entries bucketed by supernode, then located through the supernode's row map.
+  std::vector<int> start(nsuper_ + 1, 0), order(row.size());
+  for (size_t e = 0; e < row.size(); ++e) {
+    if (col[e] < 0 || col[e] >= n_ || row[e] < col[e] || row[e] >= n_) return false;
+    ++start[super_of_column_[col[e]] + 1];
+  }
+  for (int s = 0; s < nsuper_; ++s) start[s + 1] += start[s];
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (size_t e = 0; e < row.size(); ++e) order[fill[super_of_column_[col[e]]]++] = static_cast<int>(e);
+  }
+  target_.assign(row.size(), -1);
+  map_.assign(n_, -1);
+  for (int s = 0; s < nsuper_; ++s) {
+    const int nsrow = pi[s + 1] - pi[s];
+    for (int k = 0; k < nsrow; ++k) map_[ls[pi[s] + k]] = k;
+    for (int q = start[s]; q < start[s + 1]; ++q) {
+      const int e = order[q];
+      const int k = map_[row[e]];
+      if (k < 0 || ls[pi[s] + k] != row[e]) return false;  // outside the pattern
+      target_[e] = px[s] + static_cast<long>(col[e] - super[s]) * nsrow + k;
+    }
+    for (int k = 0; k < nsrow; ++k) map_[ls[pi[s] + k]] = -1;
+  }
+  head_.assign(nsuper_, -1);
+  next_.assign(nsuper_, -1);
+  position_.assign(nsuper_, 0);
+  int widest_rows = 0;
+  for (int s = 0; s < nsuper_; ++s) widest_rows = std::max(widest_rows, pi[s + 1] - pi[s]);
+  relative_.assign(widest_rows, 0);
+  return true;
+}
+
+bool SupernodalFactor::factorize(const double* value) {
+  cholmod_factor* L = L_;
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const int* ls = static_cast<const int*>(L->s);
+  double* lx = static_cast<double*>(L->x);
+  std::fill(lx, lx + L->xsize, 0.0);
+  for (size_t e = 0; e < target_.size(); ++e) lx[target_[e]] += value[e];
+  std::fill(head_.begin(), head_.end(), -1);
+  int* rel = relative_.data();
+  for (int s = 0; s < nsuper_; ++s) {
+    const int k1 = super[s], k2 = super[s + 1], nscol = k2 - k1;
+    const int psi = pi[s], nsrow = pi[s + 1] - psi;
+    double* ax = lx + px[s];
+    for (int k = 0; k < nsrow; ++k) map_[ls[psi + k]] = k;
+    // Updates from the supernodes whose rows meet columns k1 .. k2-1.
+    for (int d = head_[s]; d != -1;) {
+      const int dnext = next_[d];
+      const int pdi1 = position_[d], pdend = pi[d + 1], ndrow = pdend - pi[d];
+      const int ndcol = super[d + 1] - super[d];
+      int pdi2 = pdi1;
+      while (pdi2 < pdend && ls[pdi2] < k2) ++pdi2;
+      const int m1 = pdi2 - pdi1, m2 = pdend - pdi1;
+      for (int ii = 0; ii < m2; ++ii) rel[ii] = map_[ls[pdi1 + ii]];
+      const double* ld = lx + px[d] + (pdi1 - pi[d]);  // column c at ld + c * ndrow
+      if (static_cast<long>(m1) * m2 * ndcol >= kBlasUpdateFlops) {
+        if (buffer_.size() < static_cast<size_t>(m1) * m2) buffer_.resize(static_cast<size_t>(m1) * m2);
+        const double one = 1.0, zero = 0.0;
+        dgemm_("N", "T", &m2, &m1, &ndcol, &one, ld, &ndrow, ld, &ndrow, &zero, buffer_.data(), &m2);
+        for (int jj = 0; jj < m1; ++jj) {
+          double* target = ax + static_cast<long>(ls[pdi1 + jj] - k1) * nsrow;
+          const double* c = buffer_.data() + static_cast<long>(jj) * m2;
+          for (int ii = jj; ii < m2; ++ii) target[rel[ii]] -= c[ii];
+        }
+      } else {
+        double w[64];
+        for (int jj = 0; jj < m1; ++jj) {
+          double* target = ax + static_cast<long>(ls[pdi1 + jj] - k1) * nsrow;
+          if (ndcol <= 64) {
+            for (int c = 0; c < ndcol; ++c) w[c] = ld[static_cast<long>(c) * ndrow + jj];
+            for (int ii = jj; ii < m2; ++ii) {
+              double acc = 0.0;
+              for (int c = 0; c < ndcol; ++c) acc += w[c] * ld[static_cast<long>(c) * ndrow + ii];
+              target[rel[ii]] -= acc;
+            }
+          } else {
+            for (int ii = jj; ii < m2; ++ii) {
+              double acc = 0.0;
+              for (int c = 0; c < ndcol; ++c)
+                acc += ld[static_cast<long>(c) * ndrow + jj] * ld[static_cast<long>(c) * ndrow + ii];
+              target[rel[ii]] -= acc;
+            }
+          }
+        }
+      }
+      if (pdi2 < pdend) {  // d's next target
+        const int t = super_of_column_[ls[pdi2]];
+        position_[d] = pdi2;
+        next_[d] = head_[t];
+        head_[t] = d;
+      }
+      d = dnext;
+    }
+    for (int k = 0; k < nsrow; ++k) map_[ls[psi + k]] = -1;
+    const bool ok = nscol >= kBlasPanelWidth ? factor_panel_blas(ax, nsrow, nscol, nsrow)
+                                             : factor_panel_small(ax, nsrow, nscol, nsrow);
+    if (!ok) {
+      L->minor = static_cast<size_t>(k1);
+      return false;
+    }
+    if (nsrow > nscol) {
+      const int t = super_of_column_[ls[psi + nscol]];
+      position_[s] = psi + nscol;
+      next_[s] = head_[t];
+      head_[t] = s;
+    }
+  }
+  L->minor = static_cast<size_t>(n_);
+  return true;
+}
+
+}  // namespace strictmin::socp
