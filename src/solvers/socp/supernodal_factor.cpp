@@ -12,11 +12,18 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
             const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
 }
 
+// As in supernodal_solve.cpp: the loops are compiled for AVX2 as well as the baseline.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define STRICTMIN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define STRICTMIN_VECTOR_CLONES
+#endif
+
 namespace strictmin::socp {
 namespace {
 
 // Below these sizes the loops beat a BLAS call (call overhead, lock and buffer per call).
-constexpr long kBlasUpdateFlops = 16384;  // m1 * m2 * width of an update
+constexpr long kBlasUpdateFlops = 4096;  // m1 * m2 * width of an update
 constexpr int kBlasPanelWidth = 24;       // width of a supernode's own factorisation
 
 // In place, column-major with leading dimension ld: the rows x cols panel [A11; A21] of a
@@ -52,6 +59,20 @@ bool factor_panel_blas(double* a, int rows, int cols, int ld) {
     dtrsm_("R", "L", "T", "N", &below, &cols, &one, a, &ld, a + cols, &ld);
   }
   return true;
+}
+
+// out[i] = sum_c a[c * ld + i] * a[c * ld], i < len: one column of a narrow update.
+STRICTMIN_VECTOR_CLONES
+void update_column(const double* a, int ld, int width, int len, double* out) {
+  {
+    const double w = a[0];
+    for (int i = 0; i < len; ++i) out[i] = w * a[i];
+  }
+  for (int c = 1; c < width; ++c) {
+    const double* col = a + static_cast<long>(c) * ld;
+    const double w = col[0];
+    for (int i = 0; i < len; ++i) out[i] += w * col[i];
+  }
 }
 
 }  // namespace
@@ -101,6 +122,7 @@ bool SupernodalFactor::setup(cholmod_factor* L, cholmod_common* common, const st
   int widest_rows = 0;
   for (int s = 0; s < nsuper_; ++s) widest_rows = std::max(widest_rows, pi[s + 1] - pi[s]);
   relative_.assign(widest_rows, 0);
+  update_.assign(widest_rows, 0.0);
   return true;
 }
 
@@ -140,24 +162,14 @@ bool SupernodalFactor::factorize(const double* value) {
           for (int ii = jj; ii < m2; ++ii) target[rel[ii]] -= c[ii];
         }
       } else {
-        double w[64];
+        // Column jj of the update, ld * ld[jj, :]^T, accumulated column by column of d
+        // (contiguous, vectorised), then scattered.
+        double* column = update_.data();
         for (int jj = 0; jj < m1; ++jj) {
           double* target = ax + static_cast<long>(ls[pdi1 + jj] - k1) * nsrow;
-          if (ndcol <= 64) {
-            for (int c = 0; c < ndcol; ++c) w[c] = ld[static_cast<long>(c) * ndrow + jj];
-            for (int ii = jj; ii < m2; ++ii) {
-              double acc = 0.0;
-              for (int c = 0; c < ndcol; ++c) acc += w[c] * ld[static_cast<long>(c) * ndrow + ii];
-              target[rel[ii]] -= acc;
-            }
-          } else {
-            for (int ii = jj; ii < m2; ++ii) {
-              double acc = 0.0;
-              for (int c = 0; c < ndcol; ++c)
-                acc += ld[static_cast<long>(c) * ndrow + jj] * ld[static_cast<long>(c) * ndrow + ii];
-              target[rel[ii]] -= acc;
-            }
-          }
+          const int len = m2 - jj;
+          update_column(ld + jj, ndrow, ndcol, len, column);
+          for (int ii = 0; ii < len; ++ii) target[rel[jj + ii]] -= column[ii];
         }
       }
       if (pdi2 < pdend) {  // d's next target

@@ -39,7 +39,7 @@ class SupernodalFactor {
   std::vector<long> target_;  // entry -> index in L->x
   // Workspace of one factorisation.
   std::vector<int> head_, next_, position_, map_, relative_;
-  std::vector<double> buffer_;
+  std::vector<double> buffer_, update_;
 };
 
 }  // namespace strictmin::socp
