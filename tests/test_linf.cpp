@@ -23,6 +23,7 @@
 #include "strictmin/solvers/socp/soc.h"
 #include "strictmin/solvers/cholmod_view.h"
 #include "strictmin/solvers/socp/split_cholesky.h"
+#include "strictmin/solvers/socp/supernodal_factor.h"
 #include "strictmin/solvers/socp/supernodal_solve.h"
 
 using namespace strictmin;
@@ -540,11 +541,11 @@ TEST(SplitCholesky, SolvesLikeADenseFactorisation) {
   EXPECT_FALSE(refused.analyze(upper2, n * sizes[0], n * sizes[1]));
 }
 
-// Our one-column substitutions with a CHOLMOD supernodal factor (socp/supernodal_solve.h)
-// give what cholmod_solve gives, on a matrix whose supernodes have many widths (3 dofs per
-// grid vertex, wide coupling) and entries over 12 orders of magnitude.
-TEST(SupernodalSolve, MatchesCholmodSolve) {
-  const int g = 25, n = 3, V = g * g, N = n * V;
+// A symmetric positive definite matrix whose CHOLMOD supernodes have many widths (3 dofs per
+// vertex of a g x g grid, wide coupling) and entries over 12 orders of magnitude: its upper
+// triangle.
+Eigen::SparseMatrix<double> wide_supernode_matrix(int g) {
+  const int n = 3, V = g * g, N = n * V;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Eigen::Triplet<double>> triplets;
@@ -566,6 +567,16 @@ TEST(SupernodalSolve, MatchesCholmodSolve) {
   A.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SparseMatrix<double> upper = A.triangularView<Eigen::Upper>();
   upper.makeCompressed();
+  return upper;
+}
+
+// Our one-column substitutions with a CHOLMOD supernodal factor (socp/supernodal_solve.h)
+// give what cholmod_solve gives.
+TEST(SupernodalSolve, MatchesCholmodSolve) {
+  Eigen::SparseMatrix<double> upper = wide_supernode_matrix(25);
+  const int N = static_cast<int>(upper.rows());
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
   cholmod_common common;
   cholmod_start(&common);
   common.supernodal = CHOLMOD_SUPERNODAL;
@@ -599,6 +610,67 @@ TEST(SupernodalSolve, MatchesCholmodSolve) {
     cholmod_free_dense(&expected, &common);
   }
   cholmod_free_factor(&L, &common);
+  cholmod_finish(&common);
+}
+
+// Our numeric factorisation on CHOLMOD's analysis (socp/supernodal_factor.h) gives CHOLMOD's
+// factor: narrow updates by our loops, wide ones by BLAS (the grid's top separators are
+// supernodes of 75 and more columns). A matrix that is not positive definite is reported.
+TEST(SupernodalFactor, MatchesCholmodFactorAndDetectsIndefinite) {
+  Eigen::SparseMatrix<double> upper = wide_supernode_matrix(40);
+  const int N = static_cast<int>(upper.rows());
+  cholmod_common common;
+  cholmod_start(&common);
+  common.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse view = cholmod_view(upper, 1);
+  cholmod_factor* expected = cholmod_analyze(&view, &common);
+  cholmod_factor* ours = cholmod_analyze(&view, &common);
+  ASSERT_NE(expected, nullptr);
+  ASSERT_NE(ours, nullptr);
+  cholmod_factorize(&view, expected, &common);
+  ASSERT_EQ(common.status, CHOLMOD_OK);
+  int widest = 0;
+  for (size_t k = 0; k < ours->nsuper; ++k)
+    widest = std::max(widest, static_cast<const int*>(ours->super)[k + 1] - static_cast<const int*>(ours->super)[k]);
+  EXPECT_GE(widest, 48) << "the test should reach the BLAS paths";
+  // The upper triangle's entries as lower-triangle entries of the permuted matrix.
+  const int* perm = static_cast<const int*>(ours->Perm);
+  std::vector<int> iperm(N), rows, cols;
+  for (int k = 0; k < N; ++k) iperm[perm[k]] = k;
+  for (int c = 0; c < N; ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, c); it; ++it) {
+      const int pr = iperm[it.row()], pc = iperm[c];
+      rows.push_back(std::max(pr, pc));
+      cols.push_back(std::min(pr, pc));
+    }
+  socp::SupernodalFactor factor;
+  ASSERT_TRUE(factor.setup(ours, &common, rows, cols));
+  ASSERT_TRUE(factor.factorize(upper.valuePtr()));
+  ASSERT_EQ(ours->xsize, expected->xsize);
+  const Eigen::Map<const Eigen::VectorXd> lo(static_cast<const double*>(ours->x), ours->xsize);
+  const Eigen::Map<const Eigen::VectorXd> le(static_cast<const double*>(expected->x), expected->xsize);
+  // CHOLMOD leaves the strict upper triangle of each diagonal block as it finds it: compare
+  // the lower part (diagonal blocks' lower triangles and the blocks below).
+  double diff = 0, scale = 0;
+  const int* super = static_cast<const int*>(ours->super);
+  const int* pi = static_cast<const int*>(ours->pi);
+  const int* px = static_cast<const int*>(ours->px);
+  for (size_t k = 0; k < ours->nsuper; ++k) {
+    const int cols_k = super[k + 1] - super[k], rows_k = pi[k + 1] - pi[k];
+    for (int c = 0; c < cols_k; ++c)
+      for (int r = c; r < rows_k; ++r) {
+        const long at = px[k] + static_cast<long>(c) * rows_k + r;
+        diff = std::max(diff, std::abs(lo[at] - le[at]));
+        scale = std::max(scale, std::abs(le[at]));
+      }
+  }
+  EXPECT_LE(diff, 1e-10 * scale);
+  // Indefinite: one diagonal entry made negative.
+  Eigen::SparseMatrix<double> bad = upper;
+  bad.coeffRef(N / 2, N / 2) = -1.0;
+  EXPECT_FALSE(factor.factorize(bad.valuePtr()));
+  cholmod_free_factor(&expected, &common);
+  cholmod_free_factor(&ours, &common);
   cholmod_finish(&common);
 }
 
