@@ -186,10 +186,10 @@ void NormalEquations::build_pattern() {
     split_ = std::make_unique<SplitCholesky>();
     if (!split_->analyze(matrix_, split_sizes_[0], split_sizes_[1])) split_.reset();
   }
-  llt_.cholmod().print = 0;
-  llt_.cholmod().nmethods = 1;
-  llt_.cholmod().method[0].ordering = CHOLMOD_NATURAL;
-  if (N > 0 && !split_) llt_.analyzePattern(matrix_);
+  if (N > 0 && !split_) {
+    cholesky_ = std::make_unique<SupernodalCholesky>();
+    if (!cholesky_->analyze(matrix_)) cholesky_.reset();
+  }
   if (settings_.verbose && N > 0) {
     std::fprintf(stderr, "kkt: %d dofs, %ld nonzeros, factor %.3g nonzeros, %.3g flops per factorisation\n", N,
                  static_cast<long>(matrix_.nonZeros()), factor_nonzeros(), analyze_flops());
@@ -201,12 +201,12 @@ void NormalEquations::build_pattern() {
 
 double NormalEquations::factor_nonzeros() const {
   if (split_) return split_->nonzeros();
-  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().lnz;
+  return cholesky_ ? cholesky_->nonzeros() : 0.0;
 }
 
 double NormalEquations::analyze_flops() const {
   if (split_) return split_->flops();
-  return const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper>&>(llt_).cholmod().fl;
+  return cholesky_ ? cholesky_->flops() : 0.0;
 }
 
 Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
@@ -216,11 +216,11 @@ Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   const int N = p_.num_x;
   Eigen::VectorXd bp(N), out(N);
   for (int d = 0; d < N; ++d) bp[perm_[d]] = b[d];
-  Eigen::VectorXd xp;
+  Eigen::VectorXd xp(N);
   if (split_)
     split_->solve(bp, xp);
   else
-    xp = llt_.solve(bp);
+    cholesky_->solve(bp.data(), xp.data());
   for (int d = 0; d < N; ++d) out[d] = xp[perm_[d]];
   return out;
 }
@@ -321,8 +321,7 @@ bool NormalEquations::factor(const Scaling& sc) {
     if (split_) {
       ok = split_->factorize(values);
     } else {
-      llt_.factorize(matrix_);
-      ok = llt_.info() == Eigen::Success;
+      ok = cholesky_ && cholesky_->factorize(values);
     }
   }
   const double t_factor = lap();

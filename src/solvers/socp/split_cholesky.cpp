@@ -2,15 +2,9 @@
 
 #include <cholmod.h>
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
-#include <limits>
 #include <tbb/parallel_invoke.h>
 
-#include "strictmin/solvers/cholmod_view.h"
-#include "strictmin/solvers/socp/supernodal_factor.h"
-#include "strictmin/solvers/socp/supernodal_solve.h"
-#include "strictmin/solvers/sparse_cholesky.h"
+#include "strictmin/solvers/socp/supernodal_cholesky.h"
 
 extern "C" {
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
@@ -28,76 +22,34 @@ struct SplitCholesky::Half {
   int off = 0, n = 0, ns = 0;         // part's first index in A, part size, separator size
   Eigen::SparseMatrix<double> B;      // upper triangle of [App ApS; ASp ASS]
   std::vector<int> source;            // B's nonzeros -> A's
-  cholmod_common common;
-  cholmod_factor* L = nullptr;
-  std::vector<int> perm;              // CHOLMOD's postorder of the part (separator stays last)
-  SupernodalFactor numeric;           // our numeric factorisation on CHOLMOD's analysis
-  bool own_numeric = false;
+  SupernodalCholesky cholesky;        // of B; its postorder keeps the separator last
   Eigen::MatrixXd T, G;               // trailing factor block Tp and Tp Tp^T (lower)
   // Solve workspace (one solve at a time per half).
   mutable Eigen::VectorXd rhs, y;
 
-  Half() {
-    cholmod_start(&common);
-    common.print = 0;
-    common.nmethods = 1;
-    common.method[0].ordering = CHOLMOD_NATURAL;
-    common.supernodal = CHOLMOD_SUPERNODAL;
-  }
-  ~Half() {
-    if (L) cholmod_free_factor(&L, &common);
-    cholmod_finish(&common);
-  }
-
-  cholmod_sparse view() { return cholmod_view(B, 1); }
-
   bool analyze() {
-    cholmod_sparse A = view();
-    L = cholmod_analyze(&A, &common);
-    if (!L || !L->is_super) return false;
-    const int* p = static_cast<const int*>(L->Perm);
-    perm.assign(p, p + n + ns);
+    if (!cholesky.analyze(B)) return false;
+    const std::vector<int>& perm = cholesky.permutation();
     for (int k = n; k < n + ns; ++k)
       if (perm[k] != k) return false;
     T.setZero(ns, ns);
     G.setZero(ns, ns);
     rhs.resize(n + ns);
-    // B's upper-triangle entries as lower-triangle entries of the permuted matrix.
-    std::vector<int> iperm(n + ns), rows, cols;
-    for (int k = 0; k < n + ns; ++k) iperm[perm[k]] = k;
-    rows.reserve(B.nonZeros());
-    cols.reserve(B.nonZeros());
-    for (int c = 0; c < B.outerSize(); ++c)
-      for (int z = B.outerIndexPtr()[c]; z < B.outerIndexPtr()[c + 1]; ++z) {
-        const int pr = iperm[B.innerIndexPtr()[z]], pc = iperm[c];
-        rows.push_back(std::max(pr, pc));
-        cols.push_back(std::min(pr, pc));
-      }
-    own_numeric = !std::getenv("STRICTMIN_CHOLMOD_NUMERIC") && numeric.setup(L, &common, rows, cols);
     return true;
   }
 
   bool factorize(const double* values) {
     double* bx = B.valuePtr();
     for (size_t k = 0; k < source.size(); ++k) bx[k] = values[source[k]];
-    if (own_numeric) {
-      SerialCholmodScope serial;
-      if (!numeric.factorize(bx)) return false;
-    } else {
-      cholmod_sparse A = view();
-      {
-        SerialCholmodScope serial;
-        cholmod_factorize(&A, L, &common);
-      }
-      if (common.status != CHOLMOD_OK || L->minor < L->n) return false;
-    }
+    if (!cholesky.factorize(bx)) return false;
     // The separator's columns: the trailing block of the supernodes that hold them.
-    const int* super = static_cast<const int*>(L->super);
-    const int* pi = static_cast<const int*>(L->pi);
-    const int* px = static_cast<const int*>(L->px);
-    const int* s = static_cast<const int*>(L->s);
-    const double* x = static_cast<const double*>(L->x);
-    for (long k = static_cast<long>(L->nsuper) - 1; k >= 0 && super[k + 1] > n; --k) {
+    const cholmod_factor& L = cholesky.factor();
+    const int* super = static_cast<const int*>(L.super);
+    const int* pi = static_cast<const int*>(L.pi);
+    const int* px = static_cast<const int*>(L.px);
+    const int* s = static_cast<const int*>(L.s);
+    const double* x = static_cast<const double*>(L.x);
+    for (long k = static_cast<long>(L.nsuper) - 1; k >= 0 && super[k + 1] > n; --k) {
       const int nrows = pi[k + 1] - pi[k];
       for (int col = std::max(super[k], n); col < super[k + 1]; ++col) {
         const double* column = x + px[k] + static_cast<long>(col - super[k]) * nrows;
@@ -110,11 +62,12 @@ struct SplitCholesky::Half {
     return true;
   }
 
-  // Forward: rhs = [b_part; 0] (CHOLMOD's order), y = L^-1 rhs; g = C y_part = -T y_sep.
+  // Forward: rhs = [b_part; 0] (the factor's order), y = L^-1 rhs; g = C y_part = -T y_sep.
   void forward(const double* b_part, Eigen::VectorXd& g) const {
+    const std::vector<int>& perm = cholesky.permutation();
     for (int k = 0; k < n; ++k) rhs[k] = b_part[perm[k]];
     rhs.tail(ns).setZero();
-    solve_in_place(CHOLMOD_L);
+    cholesky.forward_in_place(rhs.data());
     y = rhs;
     g = y.tail(ns);
     const int one = 1;
@@ -129,33 +82,9 @@ struct SplitCholesky::Half {
       const int one = 1;
       dtrmv_("L", "T", "N", &ns, T.data(), &ns, rhs.data() + n, &one);
     }
-    solve_in_place(CHOLMOD_Lt);
+    cholesky.backward_in_place(rhs.data());
+    const std::vector<int>& perm = cholesky.permutation();
     for (int k = 0; k < n; ++k) x_part[perm[k]] = rhs[k];
-  }
-  void solve_in_place(int sys) const {
-    if (supports_supernodal_solve(*L)) {  // the usual case: no BLAS calls, no allocation
-      if (sys == CHOLMOD_L)
-        supernodal_forward(*L, rhs.data());
-      else
-        supernodal_backward(*L, rhs.data());
-      return;
-    }
-    cholmod_dense b;
-    std::memset(&b, 0, sizeof b);
-    b.nrow = b.d = n + ns;
-    b.ncol = 1;
-    b.nzmax = n + ns;
-    b.x = rhs.data();
-    b.xtype = CHOLMOD_REAL;
-    b.dtype = CHOLMOD_DOUBLE;
-    auto& c = const_cast<cholmod_common&>(common);
-    cholmod_dense* out = cholmod_solve(sys, L, &b, &c);
-    if (out) {
-      std::memcpy(rhs.data(), out->x, sizeof(double) * (n + ns));
-      cholmod_free_dense(&out, &c);
-    } else {
-      rhs.setConstant(std::numeric_limits<double>::quiet_NaN());
-    }
   }
 };
 
@@ -250,14 +179,14 @@ void SplitCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
 double SplitCholesky::flops() const {
   double f = static_cast<double>(ns_) * ns_ * ns_ / 3.0 + 2.0 * static_cast<double>(ns_) * ns_ * ns_;
   for (const auto& h : half_)
-    if (h) f += h->common.fl;
+    if (h) f += h->cholesky.flops();
   return f;
 }
 
 double SplitCholesky::nonzeros() const {
   double z = 0.5 * static_cast<double>(ns_) * (ns_ + 1);
   for (const auto& h : half_)
-    if (h) z += h->common.lnz;
+    if (h) z += h->cholesky.nonzeros();
   return z;
 }
 

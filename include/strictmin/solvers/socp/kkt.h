@@ -4,8 +4,8 @@
 //   [ H + P   A~^T ] [dv]   [r1]      H = M^T W^{-2} M  over v = (x, k),
 //   [ A~      0    ] [w ] = [r2],     A~ = [A 0],
 //
-// and solved with one sparse Cholesky factorisation per iteration (CHOLMOD's supernodal LLT,
-// as in sparse_cholesky.h, held here so that it factors in our ordering, ordering.h):
+// and solved with one sparse Cholesky factorisation per iteration (supernodal LLT on
+// CHOLMOD's analysis, in our ordering: supernodal_cholesky.h, ordering.h):
 // - H_xx (free dofs) has the sparsity of the vertex adjacency, n by n blocks per vertex pair:
 //   element i adds (1/beta_i^2)(I_n (x) L_i + 2 p_i p_i^T), L_i its corners' gradient Gram
 //   matrix and p_i = G_i^T v_i,1 (soc.h: W^{-2} = (1/beta^2)(2 v v^T - J)). The pattern is
@@ -20,7 +20,6 @@
 //   factor as preconditioner): near the optimum the matrix is so ill-conditioned that the
 //   factor is accurate only up to a few directions, which CG removes in a few steps. With
 //   equalities, an outer refinement on the unreduced system removes the penalty's effect.
-#include <Eigen/CholmodSupport>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -30,6 +29,7 @@
 #include "strictmin/solvers/socp/cones.h"
 #include "strictmin/solvers/socp/settings.h"
 #include "strictmin/solvers/socp/split_cholesky.h"
+#include "strictmin/solvers/socp/supernodal_cholesky.h"
 
 namespace strictmin::socp {
 
@@ -107,8 +107,8 @@ class NormalEquations {
   Eigen::VectorXd slot_values_, cone_k_;   // per-iteration element contributions
   Eigen::SparseMatrix<double, Eigen::RowMajor> at_;  // A^T (dofs by equalities)
   std::vector<int> perm_;                  // dof -> row of matrix_ (fill-reducing order)
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt_;
-  std::unique_ptr<SplitCholesky> split_;   // instead of llt_ for large problems
+  std::unique_ptr<SupernodalCholesky> cholesky_;  // the whole matrix (small problems)
+  std::unique_ptr<SplitCholesky> split_;          // or its halves in parallel (large ones)
   int split_sizes_[3] = {0, 0, 0};         // dofs of the halves and the separator
   Eigen::VectorXd llt_solve(const Eigen::VectorXd& b) const;  // in dof numbering
   double delta_ = 0, inv_rho_ = 0;

@@ -1,0 +1,58 @@
+#pragma once
+// Sparse Cholesky (LL^T) of a matrix given by its upper triangle in an order that already
+// reduces fill (ordering.h): CHOLMOD's supernodal symbolic analysis (natural order, which
+// CHOLMOD only postorders), then our numeric factorisation (supernodal_factor.h) and
+// one-column substitutions (supernodal_solve.h) on it. Should the factor not suit those (it
+// always does for the matrices CHOLMOD analyses here), CHOLMOD's own factorisation and solve
+// are used.
+//
+// The pattern is analysed once; every factorisation only refills values.
+#include <Eigen/SparseCore>
+#include <cholmod.h>
+
+#include <memory>
+#include <vector>
+
+namespace strictmin::socp {
+
+class SupernodalFactor;
+
+// One solve at a time per object (the substitutions share a workspace).
+class SupernodalCholesky {
+ public:
+  SupernodalCholesky();
+  ~SupernodalCholesky();
+  SupernodalCholesky(const SupernodalCholesky&) = delete;
+  SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
+
+  // upper: the upper triangle's pattern (compressed, column major; kept by reference until
+  // the next analyze). False when CHOLMOD cannot analyse it.
+  bool analyze(const Eigen::SparseMatrix<double>& upper);
+  // values: upper's values (same pattern). False when the matrix is not (numerically)
+  // positive definite.
+  bool factorize(const double* values);
+  // x = A^-1 b in the matrix's order (x may alias b).
+  void solve(const double* b, double* x) const;
+
+  // The factor is of P A P^T with P from CHOLMOD's postorder: row k of P A P^T is row
+  // permutation()[k] of A. In place, in that order: y <- L^-1 y and y <- L^-T y.
+  const cholmod_factor& factor() const { return *L_; }
+  const std::vector<int>& permutation() const { return perm_; }
+  void forward_in_place(double* y) const;
+  void backward_in_place(double* y) const;
+
+  double flops() const { return common_.fl; }      // of one factorisation
+  double nonzeros() const { return common_.lnz; }  // nnz(L)
+
+ private:
+  void cholmod_solve_in_place(int system, double* y) const;
+  const Eigen::SparseMatrix<double>* upper_ = nullptr;
+  mutable cholmod_common common_;
+  cholmod_factor* L_ = nullptr;
+  std::vector<int> perm_;
+  std::unique_ptr<SupernodalFactor> numeric_;  // null: CHOLMOD's numeric factorisation
+  bool own_solve_ = false;
+  mutable std::vector<double> work_;
+};
+
+}  // namespace strictmin::socp

@@ -1,0 +1,114 @@
+#include "strictmin/solvers/socp/supernodal_cholesky.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+
+#include "strictmin/solvers/cholmod_view.h"
+#include "strictmin/solvers/socp/supernodal_factor.h"
+#include "strictmin/solvers/socp/supernodal_solve.h"
+#include "strictmin/solvers/sparse_cholesky.h"
+
+namespace strictmin::socp {
+
+SupernodalCholesky::SupernodalCholesky() {
+  cholmod_start(&common_);
+  common_.print = 0;
+  common_.nmethods = 1;
+  common_.method[0].ordering = CHOLMOD_NATURAL;
+  common_.supernodal = CHOLMOD_SUPERNODAL;
+}
+
+SupernodalCholesky::~SupernodalCholesky() {
+  if (L_) cholmod_free_factor(&L_, &common_);
+  cholmod_finish(&common_);
+}
+
+bool SupernodalCholesky::analyze(const Eigen::SparseMatrix<double>& upper) {
+  if (L_) cholmod_free_factor(&L_, &common_);
+  numeric_.reset();
+  upper_ = &upper;
+  const int n = static_cast<int>(upper.rows());
+  cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(upper), 1);
+  L_ = cholmod_analyze(&A, &common_);
+  if (!L_ || common_.status != CHOLMOD_OK) return false;
+  const int* p = static_cast<const int*>(L_->Perm);
+  perm_.assign(p, p + n);
+  work_.assign(n, 0.0);
+  // The upper triangle's entries as lower-triangle entries of the permuted matrix.
+  if (L_->is_super && !std::getenv("STRICTMIN_CHOLMOD_NUMERIC")) {
+    std::vector<int> iperm(n), rows, cols;
+    for (int k = 0; k < n; ++k) iperm[perm_[k]] = k;
+    rows.reserve(upper.nonZeros());
+    cols.reserve(upper.nonZeros());
+    for (int c = 0; c < n; ++c)
+      for (int z = upper.outerIndexPtr()[c]; z < upper.outerIndexPtr()[c + 1]; ++z) {
+        const int pr = iperm[upper.innerIndexPtr()[z]], pc = iperm[c];
+        rows.push_back(std::max(pr, pc));
+        cols.push_back(std::min(pr, pc));
+      }
+    numeric_ = std::make_unique<SupernodalFactor>();
+    if (!numeric_->setup(L_, &common_, rows, cols)) numeric_.reset();
+  }
+  return true;
+}
+
+bool SupernodalCholesky::factorize(const double* values) {
+  if (!L_) return false;
+  SerialCholmodScope serial;  // sparse_cholesky.h: one BLAS thread (the wide supernodes' calls)
+  if (numeric_) {
+    if (!numeric_->factorize(values)) return false;
+  } else {
+    // CHOLMOD reads the values through the pattern's view.
+    cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(*upper_), 1);
+    A.x = const_cast<double*>(values);
+    cholmod_factorize(&A, L_, &common_);
+    if (common_.status != CHOLMOD_OK || L_->minor < L_->n) return false;
+  }
+  own_solve_ = supports_supernodal_solve(*L_);
+  return true;
+}
+
+void SupernodalCholesky::forward_in_place(double* y) const {
+  if (own_solve_)
+    supernodal_forward(*L_, y);
+  else
+    cholmod_solve_in_place(CHOLMOD_L, y);
+}
+
+void SupernodalCholesky::backward_in_place(double* y) const {
+  if (own_solve_)
+    supernodal_backward(*L_, y);
+  else
+    cholmod_solve_in_place(CHOLMOD_Lt, y);
+}
+
+void SupernodalCholesky::solve(const double* b, double* x) const {
+  const int n = static_cast<int>(perm_.size());
+  double* y = work_.data();
+  for (int k = 0; k < n; ++k) y[k] = b[perm_[k]];
+  forward_in_place(y);
+  backward_in_place(y);
+  for (int k = 0; k < n; ++k) x[perm_[k]] = y[k];
+}
+
+void SupernodalCholesky::cholmod_solve_in_place(int system, double* y) const {
+  const size_t n = perm_.size();
+  cholmod_dense b;
+  std::memset(&b, 0, sizeof b);
+  b.nrow = b.d = b.nzmax = n;
+  b.ncol = 1;
+  b.x = y;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* out = cholmod_solve(system, L_, &b, &common_);
+  if (out) {
+    std::memcpy(y, out->x, sizeof(double) * n);
+    cholmod_free_dense(&out, &common_);
+  } else {
+    std::fill(y, y + n, std::numeric_limits<double>::quiet_NaN());
+  }
+}
+
+}  // namespace strictmin::socp
