@@ -14,6 +14,7 @@ namespace strictmin::socp {
 namespace {
 
 constexpr int kGrain = 4096;
+constexpr int kMaxConeDim = 16;  // element cones have at most 10 entries (n, m <= 3: tets)
 
 // f(i, offset, dim) for every cone; the element cones with their dimension known at compile
 // time (fixed_sizes.h), the optional scalar cone last.
@@ -80,17 +81,16 @@ void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const 
 void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::VectorXd& dx, double dk,
                           const Eigen::VectorXd* rc, Eigen::VectorXd* dz, const Eigen::VectorXd* rs,
                           Eigen::VectorXd* ds, Eigen::VectorXd* dst, Eigen::VectorXd* dzt) {
-  constexpr int kMaxDim = 16;  // element cones have at most 10 entries (n, m <= 3: tets)
   const Eigen::Index size = p.cone_size();
   const bool make_dz = rc && dz, make_ds = rs && ds;
-  if (p.t() + 1 > kMaxDim) throw std::logic_error("cone_direction_parts: element cones above 16 entries");
+  if (p.t() + 1 > kMaxConeDim) throw std::logic_error("cone_direction_parts: element cones above 16 entries");
   if (make_dz) dz->resize(size);
   if (make_ds) ds->resize(size);
   if (make_ds && dst) dst->resize(size);
   if (dzt) dzt->resize(size);
   // One cone: m given (d entries) at offset o.
   auto finish = [&](int i, Eigen::Index o, int d, const double* m) {
-    double t[kMaxDim];
+    double t[kMaxConeDim];
     const double beta = sc.beta[i];
     const double* w = sc.w.data() + o;
     if (make_dz) {
@@ -111,7 +111,7 @@ void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::
   with_element_sizes(p.n, p.m, [&](auto n_c, auto m_c) {
     parallel_for_index(E, kGrain, [&](int begin, int end) {
       const int d = static_cast<int>(n_c) * static_cast<int>(m_c) + 1;
-      double m[kMaxDim];
+      double m[kMaxConeDim];
       for (int i = begin; i < end; ++i) {
         element_m(p, n_c, m_c, i, dx.data(), dk, false, m);
         finish(i, static_cast<Eigen::Index>(i) * d, d, m);
@@ -161,6 +161,15 @@ void cone_centrality_correction(const ConeProgram& p, const Eigen::VectorXd& v, 
 
 double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u) {
   return min_over_cones(p, [&](Eigen::Index o, int d) { return max_step(l.data() + o, u.data() + o, d); });
+}
+
+double cone_max_step_of_sum(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u,
+                            const Eigen::VectorXd& v) {
+  return min_over_cones(p, [&](Eigen::Index o, int d) {
+    double w[kMaxConeDim];
+    for (int i = 0; i < d; ++i) w[i] = u[o + i] + v[o + i];
+    return max_step(l.data() + o, w, d);
+  });
 }
 
 double cone_min_margin(const ConeProgram& p, const Eigen::VectorXd& u) {

@@ -165,19 +165,19 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
       const auto ts = clock();
       kkt.solve_newton(qg, zero_rs, zero_rdx, 0.0, zero_req, cd, settings.corrector_tolerance);
       out.solve_s += since(ts);
-      Direction trial;
-      trial.dx = dir.dx + cd.dx;
-      trial.dk = dir.dk + cd.dk;
-      trial.dy = dir.dy + cd.dy;
-      trial.ds = dir.ds + cd.ds;
-      trial.dz = dir.dz + cd.dz;
-      trial.dst = dir.dst + cd.dst;
-      trial.dzt = dir.dzt + cd.dzt;
-      trial.residual = std::max(dir.residual, cd.residual);
-      trial.refinement = dir.refinement + cd.refinement;
-      const double tmax = max_step_of(trial);
-      if (!(tmax >= cmax + settings.corrector_acceptance * (target - cmax)) || !trial.dx.allFinite()) break;
-      dir = std::move(trial);
+      // The step along dir + cd, formed only if kept.
+      const double tmax = std::min(cone_max_step_of_sum(p, sc.lambda, dir.dst, cd.dst),
+                                   cone_max_step_of_sum(p, sc.lambda, dir.dzt, cd.dzt));
+      if (!(tmax >= cmax + settings.corrector_acceptance * (target - cmax)) || !cd.dx.allFinite()) break;
+      dir.dx += cd.dx;
+      dir.dk += cd.dk;
+      if (dir.dy.size() == cd.dy.size()) dir.dy += cd.dy;
+      dir.ds += cd.ds;
+      dir.dz += cd.dz;
+      dir.dst += cd.dst;
+      dir.dzt += cd.dzt;
+      dir.residual = std::max(dir.residual, cd.residual);
+      dir.refinement += cd.refinement;
       cmax = tmax;
       ++correctors;
     }

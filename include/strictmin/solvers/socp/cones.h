@@ -45,6 +45,9 @@ Eigen::VectorXd cone_identity(const ConeProgram& p, double value);
 void cone_centrality_correction(const ConeProgram& p, const Eigen::VectorXd& v, double lo, double hi, Eigen::VectorXd& t);
 
 double cone_max_step(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u);
+// The same along u + v, without forming it (a trial sum of directions).
+double cone_max_step_of_sum(const ConeProgram& p, const Eigen::VectorXd& l, const Eigen::VectorXd& u,
+                            const Eigen::VectorXd& v);
 
 // Smallest u0 - ||u1|| over the cones (negative when u is outside some cone).
 double cone_min_margin(const ConeProgram& p, const Eigen::VectorXd& u);
