@@ -2,9 +2,11 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <limits>
 #include <mutex>
 
-#include "strictmin/solvers/socp/supernodal_solve.h"
+#include "strictmin/solvers/socp/supernodal_cholesky.h"
 
 namespace strictmin {
 namespace {
@@ -60,42 +62,50 @@ SerialCholmodScope::~SerialCholmodScope() {
   }
 }
 
-SparseCholesky::SparseCholesky() : llt_(std::make_unique<Llt>()) {
-  llt_->cholmod().print = 0;  // a non-positive-definite matrix is reported by factorize()
-}
+SparseCholesky::SparseCholesky(bool amd_only) : amd_only_(amd_only) {}
 
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
-  llt_->analyzePattern(A);
-  analyzed_ = true;
+  using socp::SupernodalCholesky;
+  pattern_ = A;
+  pattern_.makeCompressed();
+  cholesky_ = std::make_unique<SupernodalCholesky>(
+      amd_only_ ? SupernodalCholesky::Ordering::Amd : SupernodalCholesky::Ordering::Cholmod,
+      SupernodalCholesky::Triangle::Lower);
+  analyzed_ = cholesky_->analyze(pattern_);
+  factorized_ = false;
+}
+
+bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double>& A) const {
+  if (!A.isCompressed() || A.rows() != pattern_.rows() || A.cols() != pattern_.cols() ||
+      A.nonZeros() != pattern_.nonZeros())
+    return false;
+  const Eigen::Index n = A.outerSize(), nnz = A.nonZeros();
+  return std::equal(A.outerIndexPtr(), A.outerIndexPtr() + n + 1, pattern_.outerIndexPtr()) &&
+         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + nnz, pattern_.innerIndexPtr());
 }
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  if (!analyzed_) analyze(A);
-  SerialCholmodScope serial;
-  llt_->factorize(A);
-  return llt_->info() == Eigen::Success;
+  if (!analyzed_ || !same_pattern(A)) {
+    Eigen::SparseMatrix<double> compressed = A;
+    compressed.makeCompressed();
+    analyze(compressed);
+    if (!analyzed_) return false;
+    factorized_ = cholesky_->factorize(pattern_.valuePtr());
+    return factorized_;
+  }
+  factorized_ = cholesky_->factorize(A.valuePtr());
+  return factorized_;
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
-  const cholmod_factor* L = llt_->factor();
-  if (!L || !socp::supports_supernodal_solve(*L) || llt_->info() != Eigen::Success ||
-      static_cast<Eigen::Index>(L->n) != B.rows()) {
-    SerialCholmodScope serial;
-    return llt_->solve(B);
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  if (!factorized_ || B.rows() != pattern_.rows()) {
+    X.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return X;
   }
-  // L L^T = P A P^T with (P b)_k = b_{Perm[k]}: x = P^T L^-T L^-1 P b.
-  const int* perm = static_cast<const int*>(L->Perm);
-  const Eigen::Index n = B.rows();
-  Eigen::MatrixXd X(n, B.cols());
-  Eigen::VectorXd y(n);
-  for (Eigen::Index c = 0; c < B.cols(); ++c) {
-    for (Eigen::Index k = 0; k < n; ++k) y[k] = B(perm ? perm[k] : k, c);
-    socp::supernodal_forward(*L, y.data());
-    socp::supernodal_backward(*L, y.data());
-    for (Eigen::Index k = 0; k < n; ++k) X(perm ? perm[k] : k, c) = y[k];
-  }
+  for (Eigen::Index c = 0; c < B.cols(); ++c) cholesky_->solve(B.col(c).data(), X.col(c).data());
   return X;
 }
 

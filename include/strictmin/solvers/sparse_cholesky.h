@@ -1,8 +1,9 @@
 #pragma once
-// Sparse Cholesky (CHOLMOD, supernodal, through Eigen's CholmodSupport) with the symbolic
+// Sparse Cholesky (supernodal: CHOLMOD's symbolic analysis and fill-reducing order, our
+// numeric factorisation and substitutions, socp/supernodal_cholesky.h) with the symbolic
 // analysis kept: analyze() once per sparsity pattern, factorize() for every new matrix with
-// that pattern, solve() as often as needed.
-#include <Eigen/CholmodSupport>
+// that pattern (a matrix with another pattern is analysed again), solve() as often as needed.
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
 
@@ -31,9 +32,15 @@ class SerialCholmodScope {
   int saved_ = -1;
 };
 
+namespace socp {
+class SupernodalCholesky;
+}
+
 class SparseCholesky {
  public:
-  SparseCholesky();
+  // amd_only: AMD for the fill-reducing order (no METIS: safe to run beside another thread's
+  // METIS, whose random generator is global); otherwise CHOLMOD's default choice.
+  explicit SparseCholesky(bool amd_only = false);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
@@ -42,18 +49,16 @@ class SparseCholesky {
   void analyze(const Eigen::SparseMatrix<double>& A);
   // False when A is not (numerically) positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& A);
-  // A^{-1} B, column by column with one-column supernodal substitutions (socp/supernodal_solve.h:
-  // no BLAS call per supernode, no allocation inside), or CHOLMOD's solve for other factors.
+  // A^{-1} B, column by column.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   bool analyzed() const { return analyzed_; }
 
  private:
-  // Eigen's wrapper, with access to CHOLMOD's factor for our own substitutions.
-  struct Llt : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
-    const cholmod_factor* factor() const { return this->m_cholmodFactor; }
-  };
-  std::unique_ptr<Llt> llt_;
-  bool analyzed_ = false;
+  bool same_pattern(const Eigen::SparseMatrix<double>& A) const;
+  bool amd_only_ = false;
+  Eigen::SparseMatrix<double> pattern_;  // compressed copy of the analysed matrix
+  std::unique_ptr<socp::SupernodalCholesky> cholesky_;
+  bool analyzed_ = false, factorized_ = false;
 };
 
 }  // namespace strictmin

@@ -12,12 +12,15 @@
 
 namespace strictmin::socp {
 
-SupernodalCholesky::SupernodalCholesky() {
+SupernodalCholesky::SupernodalCholesky(Ordering ordering, Triangle triangle)
+    : stype_(triangle == Triangle::Upper ? 1 : -1) {
   cholmod_start(&common_);
   common_.print = 0;
-  common_.nmethods = 1;
-  common_.method[0].ordering = CHOLMOD_NATURAL;
   common_.supernodal = CHOLMOD_SUPERNODAL;
+  if (ordering != Ordering::Cholmod) {
+    common_.nmethods = 1;
+    common_.method[0].ordering = ordering == Ordering::Given ? CHOLMOD_NATURAL : CHOLMOD_AMD;
+  }
 }
 
 SupernodalCholesky::~SupernodalCholesky() {
@@ -25,27 +28,31 @@ SupernodalCholesky::~SupernodalCholesky() {
   cholmod_finish(&common_);
 }
 
-bool SupernodalCholesky::analyze(const Eigen::SparseMatrix<double>& upper) {
+bool SupernodalCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
   if (L_) cholmod_free_factor(&L_, &common_);
   numeric_.reset();
-  upper_ = &upper;
-  const int n = static_cast<int>(upper.rows());
-  cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(upper), 1);
+  pattern_ = &pattern;
+  const int n = static_cast<int>(pattern.rows());
+  perm_.clear();
+  if (n == 0) return true;  // nothing to factorise
+  cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(pattern), stype_);
   L_ = cholmod_analyze(&A, &common_);
   if (!L_ || common_.status != CHOLMOD_OK) return false;
   const int* p = static_cast<const int*>(L_->Perm);
   perm_.assign(p, p + n);
-  work_.assign(n, 0.0);
-  // The upper triangle's entries as lower-triangle entries of the permuted matrix.
+  // The given triangle's entries as lower-triangle entries of the permuted matrix (the other
+  // triangle's marked unused).
   if (L_->is_super && !std::getenv("STRICTMIN_CHOLMOD_NUMERIC")) {
     std::vector<int> iperm(n), rows, cols;
     for (int k = 0; k < n; ++k) iperm[perm_[k]] = k;
-    rows.reserve(upper.nonZeros());
-    cols.reserve(upper.nonZeros());
+    rows.reserve(pattern.nonZeros());
+    cols.reserve(pattern.nonZeros());
     for (int c = 0; c < n; ++c)
-      for (int z = upper.outerIndexPtr()[c]; z < upper.outerIndexPtr()[c + 1]; ++z) {
-        const int pr = iperm[upper.innerIndexPtr()[z]], pc = iperm[c];
-        rows.push_back(std::max(pr, pc));
+      for (int z = pattern.outerIndexPtr()[c]; z < pattern.outerIndexPtr()[c + 1]; ++z) {
+        const int r = pattern.innerIndexPtr()[z];
+        const bool used = stype_ > 0 ? r <= c : r >= c;
+        const int pr = iperm[r], pc = iperm[c];
+        rows.push_back(used ? std::max(pr, pc) : -1);
         cols.push_back(std::min(pr, pc));
       }
     numeric_ = std::make_unique<SupernodalFactor>();
@@ -55,13 +62,13 @@ bool SupernodalCholesky::analyze(const Eigen::SparseMatrix<double>& upper) {
 }
 
 bool SupernodalCholesky::factorize(const double* values) {
-  if (!L_) return false;
+  if (!L_) return pattern_ && pattern_->rows() == 0;
   SerialCholmodScope serial;  // sparse_cholesky.h: one BLAS thread (the wide supernodes' calls)
   if (numeric_) {
     if (!numeric_->factorize(values)) return false;
   } else {
     // CHOLMOD reads the values through the pattern's view.
-    cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(*upper_), 1);
+    cholmod_sparse A = cholmod_view(const_cast<Eigen::SparseMatrix<double>&>(*pattern_), stype_);
     A.x = const_cast<double*>(values);
     cholmod_factorize(&A, L_, &common_);
     if (common_.status != CHOLMOD_OK || L_->minor < L_->n) return false;
@@ -86,7 +93,10 @@ void SupernodalCholesky::backward_in_place(double* y) const {
 
 void SupernodalCholesky::solve(const double* b, double* x) const {
   const int n = static_cast<int>(perm_.size());
-  double* y = work_.data();
+  if (n == 0) return;
+  thread_local std::vector<double> work;  // solves may run on several threads at once
+  if (static_cast<int>(work.size()) < n) work.resize(n);
+  double* y = work.data();
   for (int k = 0; k < n; ++k) y[k] = b[perm_[k]];
   forward_in_place(y);
   backward_in_place(y);

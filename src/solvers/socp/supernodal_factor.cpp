@@ -93,17 +93,21 @@ bool SupernodalFactor::setup(cholmod_factor* L, cholmod_common* common, const st
   for (int s = 0; s < nsuper_; ++s)
     for (int j = super[s]; j < super[s + 1]; ++j) super_of_column_[j] = s;
   // Entries bucketed by supernode, then located through the supernode's row map.
-  std::vector<int> start(nsuper_ + 1, 0), order(row.size());
+  std::vector<int> start(nsuper_ + 1, 0);
+  source_.clear();
   for (size_t e = 0; e < row.size(); ++e) {
+    if (row[e] < 0) continue;
     if (col[e] < 0 || col[e] >= n_ || row[e] < col[e] || row[e] >= n_) return false;
     ++start[super_of_column_[col[e]] + 1];
+    source_.push_back(static_cast<int>(e));
   }
   for (int s = 0; s < nsuper_; ++s) start[s + 1] += start[s];
+  std::vector<int> order(source_.size());
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
-    for (size_t e = 0; e < row.size(); ++e) order[fill[super_of_column_[col[e]]]++] = static_cast<int>(e);
+    for (int e : source_) order[fill[super_of_column_[col[e]]]++] = e;
   }
-  target_.assign(row.size(), -1);
+  std::vector<long> target_of(row.size(), -1);
   map_.assign(n_, -1);
   for (int s = 0; s < nsuper_; ++s) {
     const int nsrow = pi[s + 1] - pi[s];
@@ -112,10 +116,12 @@ bool SupernodalFactor::setup(cholmod_factor* L, cholmod_common* common, const st
       const int e = order[q];
       const int k = map_[row[e]];
       if (k < 0 || ls[pi[s] + k] != row[e]) return false;  // outside the pattern
-      target_[e] = px[s] + static_cast<long>(col[e] - super[s]) * nsrow + k;
+      target_of[e] = px[s] + static_cast<long>(col[e] - super[s]) * nsrow + k;
     }
     for (int k = 0; k < nsrow; ++k) map_[ls[pi[s] + k]] = -1;
   }
+  target_.resize(source_.size());
+  for (size_t q = 0; q < source_.size(); ++q) target_[q] = target_of[source_[q]];
   head_.assign(nsuper_, -1);
   next_.assign(nsuper_, -1);
   position_.assign(nsuper_, 0);
@@ -134,7 +140,7 @@ bool SupernodalFactor::factorize(const double* value) {
   const int* ls = static_cast<const int*>(L->s);
   double* lx = static_cast<double*>(L->x);
   std::fill(lx, lx + L->xsize, 0.0);
-  for (size_t e = 0; e < target_.size(); ++e) lx[target_[e]] += value[e];
+  for (size_t q = 0; q < target_.size(); ++q) lx[target_[q]] += value[source_[q]];
   std::fill(head_.begin(), head_.end(), -1);
   int* rel = relative_.data();
   for (int s = 0; s < nsuper_; ++s) {

@@ -1,10 +1,11 @@
 #pragma once
-// Sparse Cholesky (LL^T) of a matrix given by its upper triangle in an order that already
-// reduces fill (ordering.h): CHOLMOD's supernodal symbolic analysis (natural order, which
-// CHOLMOD only postorders), then our numeric factorisation (supernodal_factor.h) and
-// one-column substitutions (supernodal_solve.h) on it. Should the factor not suit those (it
-// always does for the matrices CHOLMOD analyses here), CHOLMOD's own factorisation and solve
-// are used.
+// Sparse Cholesky (LL^T) of a symmetric matrix given by one triangle: CHOLMOD's supernodal
+// symbolic analysis, then our numeric factorisation (supernodal_factor.h) and one-column
+// substitutions (supernodal_solve.h) on it. The fill-reducing order is either the matrix's
+// own (computed by the caller, e.g. ordering.h: CHOLMOD only postorders it), AMD, or
+// CHOLMOD's default choice (AMD, METIS where AMD fills badly). Should the factor not suit our
+// routines (it always does for the matrices CHOLMOD analyses here), CHOLMOD's own
+// factorisation and solve are used.
 //
 // The pattern is analysed once; every factorisation only refills values.
 #include <Eigen/SparseCore>
@@ -17,19 +18,20 @@ namespace strictmin::socp {
 
 class SupernodalFactor;
 
-// One solve at a time per object (the substitutions share a workspace).
 class SupernodalCholesky {
  public:
-  SupernodalCholesky();
+  enum class Ordering { Given, Amd, Cholmod };
+  enum class Triangle { Upper, Lower };
+  explicit SupernodalCholesky(Ordering ordering = Ordering::Given, Triangle triangle = Triangle::Upper);
   ~SupernodalCholesky();
   SupernodalCholesky(const SupernodalCholesky&) = delete;
   SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
 
-  // upper: the upper triangle's pattern (compressed, column major; kept by reference until
-  // the next analyze). False when CHOLMOD cannot analyse it.
-  bool analyze(const Eigen::SparseMatrix<double>& upper);
-  // values: upper's values (same pattern). False when the matrix is not (numerically)
-  // positive definite.
+  // The pattern (compressed, column major; kept by reference until the next analyze): only
+  // the triangle given at construction is read. False when CHOLMOD cannot analyse it.
+  bool analyze(const Eigen::SparseMatrix<double>& pattern);
+  // values: the analysed matrix's values (same pattern). False when the matrix is not
+  // (numerically) positive definite.
   bool factorize(const double* values);
   // x = A^-1 b in the matrix's order (x may alias b).
   void solve(const double* b, double* x) const;
@@ -46,13 +48,13 @@ class SupernodalCholesky {
 
  private:
   void cholmod_solve_in_place(int system, double* y) const;
-  const Eigen::SparseMatrix<double>* upper_ = nullptr;
+  const Eigen::SparseMatrix<double>* pattern_ = nullptr;
+  int stype_ = 1;  // CHOLMOD's: 1 upper, -1 lower
   mutable cholmod_common common_;
   cholmod_factor* L_ = nullptr;
   std::vector<int> perm_;
   std::unique_ptr<SupernodalFactor> numeric_;  // null: CHOLMOD's numeric factorisation
   bool own_solve_ = false;
-  mutable std::vector<double> work_;
 };
 
 }  // namespace strictmin::socp

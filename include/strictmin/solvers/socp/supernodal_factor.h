@@ -25,7 +25,8 @@ class SupernodalFactor {
  public:
   // L: CHOLMOD's supernodal analysis (LL^T, int indices) of an n x n matrix, whose numeric
   // storage is allocated here if it has none. Entry e of the matrix's lower triangle, in L's
-  // permuted order, is (row[e], col[e]) with row[e] >= col[e]; entries may repeat (summed).
+  // permuted order, is (row[e], col[e]) with row[e] >= col[e]; entries may repeat (summed);
+  // an entry with row[e] < 0 is not part of the matrix (the other triangle of a full one).
   // False when L is not such a factor or an entry lies outside its pattern.
   bool setup(cholmod_factor* L, cholmod_common* common, const std::vector<int>& row, const std::vector<int>& col);
   // Factorises the matrix whose entry e is value[e] into L. False when it is not
@@ -36,7 +37,8 @@ class SupernodalFactor {
   cholmod_factor* L_ = nullptr;
   int n_ = 0, nsuper_ = 0;
   std::vector<int> super_of_column_;
-  std::vector<long> target_;  // entry -> index in L->x
+  std::vector<int> source_;   // the entries used (index e)
+  std::vector<long> target_;  // ... and where each goes in L->x
   // Workspace of one factorisation.
   std::vector<int> head_, next_, position_, map_, relative_;
   std::vector<double> buffer_, update_;
