@@ -14,9 +14,12 @@
 #include <numeric>
 #include <sstream>
 
+#include <tbb/task_group.h>
+
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/socp/certificate.h"
+#include "strictmin/solvers/socp/kkt.h"
 #include "strictmin/solvers/socp/fd_program.h"
 #include "strictmin/solvers/socp/ipm.h"
 
@@ -228,6 +231,24 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   }
   const bool has_k = num_free_cones > 0 || has_kmin;
   socp::restrict_equalities(p, vertex_dof, num_x, p.positions, p.fixed, prog);
+  const socp::IpmSettings settings = ipm_settings(options);
+
+  // The normal equations' ordering and analysis (a third of a second at 100k elements) run on
+  // another thread while this one builds the least-squares factor and the start. They read
+  // only the program's structure, which stays fixed from here (phase 1 and the relaxation of
+  // bounds change bounds only); the wait comes before phase 1, whose own analysis uses METIS
+  // too (its random generator is global: no two orderings at once).
+  std::unique_ptr<socp::NormalEquations> normal_equations;
+  tbb::task_group analysis;
+  const bool prepare = num_x > 0 && (num_free_cones > 0 || has_kmin);
+  if (prepare) analysis.run([&] { normal_equations = std::make_unique<socp::NormalEquations>(prog, settings); });
+  struct JoinOnExit {  // every return path waits for the task (it references locals)
+    tbb::task_group& g;
+    bool active;
+    ~JoinOnExit() {
+      if (active) g.wait();
+    }
+  } join_on_exit{analysis, prepare};
 
   socp::WeightedLeastSquares ls(prog);
   if (!ls.ok()) {
@@ -261,7 +282,6 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     if (given.x.allFinite() && (given.excess < start.excess || (given.excess == start.excess && given.kmax < start.kmax)))
       start = given;
   }
-  const socp::IpmSettings settings = ipm_settings(options);
   int total_iterations = 0;
 
   // Phase 1 and relaxation of barely missed bounds. A start that misses them by round-off
@@ -274,6 +294,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   if (!cls.bounded_elements.empty() && start.excess > 0 && start.excess <= 1e-12 * bound_scale) {
     relax = start.excess;
   } else if (!cls.bounded_elements.empty() && start.excess > 0) {
+    analysis.wait();
     Phase1 ph = run_phase1(p, cls, bounds, p.with_free_dofs(start.x), options);
     total_iterations += ph.iterations;
     if (!ph.feasible) {
@@ -310,6 +331,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   socp::IpmState st;
   const double k0 = start_above(start.kmax);
   socp::initialize(prog, start.x, k0, 1e-2 * (1.0 + std::abs(k0)), 1.0, st);
+  analysis.wait();
   ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals&,
                                                      const socp::IpmIteration& info) {
     const Eigen::VectorXd d = socp::cone_distortions(prog, s.x);
@@ -362,7 +384,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       return true;
     }
     return false;
-  });
+  }, normal_equations.get());
   if (ms.stalled) {
     ms.outcome.status = socp::IpmStatus::NumericalError;
     ms.outcome.message = "the certified gap stopped improving (the Newton systems are too ill-conditioned)";

@@ -6,7 +6,7 @@
 
 namespace strictmin::socp {
 
-WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p) : p_(p) {
+WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p) : p_(p), cholesky_(/*amd_only=*/true) {
   const int n = p.n, m = p.m, c = p.corners(), F = p.num_x / n;
   if (F == 0) return;
   std::vector<Eigen::Triplet<double>> triplets;

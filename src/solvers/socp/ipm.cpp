@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "strictmin/solvers/socp/cones.h"
 #include "strictmin/solvers/socp/kkt.h"
@@ -55,7 +56,8 @@ bool default_converged(const Residuals& r, const IpmSettings& settings) {
          r.gap <= settings.gap_tolerance * scale;
 }
 
-IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor) {
+IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
+                   NormalEquations* normal_equations) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   IpmOutcome out;
@@ -84,7 +86,9 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     }
   } finish{out, settings, elapsed};
   auto tp = clock();
-  NormalEquations kkt(p, settings);
+  std::unique_ptr<NormalEquations> own;
+  if (!normal_equations) own = std::make_unique<NormalEquations>(p, settings);
+  NormalEquations& kkt = normal_equations ? *normal_equations : *own;
   finish.kkt = &kkt;
   out.analyze_s = since(tp);
   const ResidualScales scales = residual_scales(p);

@@ -11,7 +11,8 @@
 //
 // G^T W G = K (x) I_n with K = sum_i w_i L_i (L_i the corners' gradient Gram matrix), the
 // area-weighted L2 matrix of the free vertices (the cotangent Laplacian for triangles):
-// factorised once, solved per image coordinate.
+// factorised once (in AMD order: no METIS, so that it may be built while another thread
+// orders the normal equations), solved per image coordinate.
 #include <Eigen/Core>
 
 #include "strictmin/solvers/socp/cone_program.h"

@@ -39,6 +39,11 @@ using IpmMonitor = std::function<bool(const IpmState&, const Residuals&, const I
 // gap <= gap_tolerance * max(1, min(|pobj|, |dobj|)).
 bool default_converged(const Residuals& r, const IpmSettings& settings);
 
-IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor);
+class NormalEquations;
+
+// normal_equations: the program's normal equations, analysed beforehand (e.g. on another
+// thread while the caller prepared the start); null: analysed here.
+IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
+                   NormalEquations* normal_equations = nullptr);
 
 }  // namespace strictmin::socp
