@@ -332,9 +332,9 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   const double k0 = start_above(start.kmax);
   socp::initialize(prog, start.x, k0, 1e-2 * (1.0 + std::abs(k0)), 1.0, st);
   analysis.wait();
-  ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals&,
+  ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals& r,
                                                      const socp::IpmIteration& info) {
-    const Eigen::VectorXd d = socp::cone_distortions(prog, s.x);
+    const Eigen::VectorXd& d = r.tail_norms;  // the distortions at s.x
     double k = has_kmin ? cls.constant_max : -kInf;
     for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
     if (k < ms.k && bound_ok(d) && equalities_ok(s.x)) {

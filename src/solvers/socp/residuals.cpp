@@ -19,6 +19,11 @@ void compute_residuals(const ConeProgram& p, const ResidualScales& scales, const
   Eigen::VectorXd mv;
   p.apply_m(st.x, st.k, true, mv);
   out.rs = st.s - mv;
+  const int E = p.num_element_cones(), tt = p.t();
+  out.tail_norms.resize(E);
+  parallel_for_index(E, 4096, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) out.tail_norms[i] = mv.segment(p.cone_offset(i) + 1, tt).norm();
+  });
   double gk = 0;
   p.apply_mt(st.z, out.rdx, gk);
   out.rdx = -out.rdx;
@@ -40,7 +45,6 @@ void compute_residuals(const ConeProgram& p, const ResidualScales& scales, const
   out.rdk = p.has_k ? p.c_k - gk : 0.0;
   // -z^T o = sum_i (-b_i z_i0 + h_i^T z_i,tail)
   double zo = 0;
-  const int tt = p.t();
   for (int i = 0; i < p.num_element_cones(); ++i) {
     const Eigen::Index o = p.cone_offset(i);
     zo += -p.head_b[i] * st.z[o] + p.h.segment(static_cast<Eigen::Index>(i) * tt, tt).dot(st.z.segment(o + 1, tt));

@@ -24,6 +24,8 @@ struct Residuals {
   double rdk = 0;
   double pobj = 0, dobj = 0, gap = 0;
   double pres = 0, dres = 0;  // relative, max norm
+  // ||G_i x - h_i|| of every element cone (its distortion at x), a by-product of r_s.
+  Eigen::VectorXd tail_norms;
 };
 
 // Norms used to make the residuals relative (computed once per program).
