@@ -532,6 +532,13 @@ TEST(SplitCholesky, SolvesLikeADenseFactorisation) {
   const Eigen::VectorXd expected = Ap.llt().solve(b);
   EXPECT_LE((Ap * x - b).norm(), 1e-6 * b.norm());
   EXPECT_LE((x - expected).norm(), 1e-6 * expected.norm());
+  // Two right-hand sides at once: each as solved alone, to round-off.
+  const Eigen::VectorXd b1 = Eigen::VectorXd::NullaryExpr(N, [&] { return u(rng); });
+  Eigen::VectorXd x1, y0, y1;
+  split.solve(b1, x1);
+  split.solve2(b, b1, y0, y1);
+  EXPECT_LE((y0 - x).norm(), 1e-12 * x.norm());
+  EXPECT_LE((y1 - x1).norm(), 1e-12 * x1.norm());
   // A matrix that couples the two parts is refused.
   Eigen::MatrixXd coupled = Ap;
   coupled(0, N - n * sizes[2] - 1) = coupled(N - n * sizes[2] - 1, 0) = 1e-3;
@@ -608,6 +615,25 @@ TEST(SupernodalSolve, MatchesCholmodSolve) {
     const Eigen::Map<Eigen::VectorXd> e(static_cast<double*>(expected->x), N);
     EXPECT_LE((ours - e).norm(), 1e-12 * e.norm()) << (sys == CHOLMOD_L ? "forward" : "backward");
     cholmod_free_dense(&expected, &common);
+  }
+  // Two right-hand sides interleaved: each as substituted alone.
+  const Eigen::VectorXd c = Eigen::VectorXd::NullaryExpr(N, [&] { return u(rng); });
+  for (int sys : {CHOLMOD_L, CHOLMOD_Lt}) {
+    Eigen::VectorXd one_b = b, one_c = c, both(2 * N);
+    for (int i = 0; i < N; ++i) both[2 * i] = b[i], both[2 * i + 1] = c[i];
+    if (sys == CHOLMOD_L) {
+      socp::supernodal_forward(*L, one_b.data());
+      socp::supernodal_forward(*L, one_c.data());
+      socp::supernodal_forward2(*L, both.data());
+    } else {
+      socp::supernodal_backward(*L, one_b.data());
+      socp::supernodal_backward(*L, one_c.data());
+      socp::supernodal_backward2(*L, both.data());
+    }
+    double diff = 0;
+    for (int i = 0; i < N; ++i) diff = std::max({diff, std::abs(both[2 * i] - one_b[i]), std::abs(both[2 * i + 1] - one_c[i])});
+    EXPECT_LE(diff, 1e-12 * std::max(one_b.lpNorm<Eigen::Infinity>(), one_c.lpNorm<Eigen::Infinity>()))
+        << (sys == CHOLMOD_L ? "forward2" : "backward2");
   }
   cholmod_free_factor(&L, &common);
   cholmod_finish(&common);

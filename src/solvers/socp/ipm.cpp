@@ -134,6 +134,11 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     Direction aff;
     qa = -sc.lambda;
     direction(qa, aff, settings.predictor_tolerance);
+    if (kkt.bordering_failed()) {
+      out.status = IpmStatus::NumericalError;
+      out.message = "the normal equations could not be factorised (not positive definite)";
+      return out;
+    }
     const double amax = std::min(cone_max_step(p, sc.lambda, aff.dst), cone_max_step(p, sc.lambda, aff.dzt));
     const double alpha_a = std::min(1.0, amax);
     const double ratio = 1.0 - alpha_a + alpha_a * alpha_a * aff.dst.dot(aff.dzt) / sc.lambda.squaredNorm();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -225,6 +226,29 @@ Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   return out;
 }
 
+void NormalEquations::llt_solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0,
+                                 Eigen::VectorXd& x1) const {
+  PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
+  SerialCholmodScope serial;  // one BLAS thread (sparse_cholesky.h)
+  ++timers_.solves;
+  const int N = p_.num_x;
+  Eigen::VectorXd bp0(N), bp1(N), xp0(N), xp1(N);
+  for (int d = 0; d < N; ++d) {
+    bp0[perm_[d]] = b0[d];
+    bp1[perm_[d]] = b1[d];
+  }
+  if (split_)
+    split_->solve2(bp0, bp1, xp0, xp1);
+  else
+    cholesky_->solve2(bp0.data(), bp1.data(), xp0.data(), xp1.data());
+  x0.resize(N);
+  x1.resize(N);
+  for (int d = 0; d < N; ++d) {
+    x0[d] = xp0[perm_[d]];
+    x1[d] = xp1[perm_[d]];
+  }
+}
+
 bool NormalEquations::factor(const Scaling& sc) {
   scaling_ = &sc;
   const auto tf0 = std::chrono::steady_clock::now();
@@ -338,27 +362,40 @@ bool NormalEquations::factor(const Scaling& sc) {
           for (int r = 0; r < n; ++r) hxk_[f * n + r] += cone_k_[static_cast<Eigen::Index>(i) * L + j * n + r];
         }
     });
-    u_ = llt_solve(hxk_);
-    // S = h_kk - h_xk^T u cancels badly near the optimum (each active cone adds two huge,
-    // nearly equal terms). The same number is min over x of (x,1)^T H (x,1), attained at
-    // x = -u: S = sum_i ||W_i^{-1} M_i (-u, 1)||^2, a sum of squares without cancellation
-    // (plus the regularisation's share, which the factor also contains).
-    Eigen::VectorXd mv, wm;
-    p_.apply_m(-u_, 1.0, false, mv);
-    apply_scaling(p_, sc, ScalingOp::WInv, mv, wm);
-    double reg_part = 0;
-    for (int d = 0; d < N; ++d) reg_part += (values[diagonal_[d]] - diag_saved_[d]) * u_[d] * u_[d];
-    schur_ = wm.squaredNorm() + reg_part;
-    if (p_.has_quad()) {
-      Eigen::VectorXd pu;
-      p_.apply_p(u_, pu);
-      schur_ += u_.dot(pu);
-    }
-    if (!(schur_ > 0) || !std::isfinite(schur_) || !u_.allFinite()) return false;
+    // u = H_xx^{-1} h_xk is solved together with the first right-hand side (solve_normal):
+    // one pass over the factor for both.
+    border_pending_ = true;
+    border_failed_ = false;
   }
   if (settings_.verbose >= 2)
     std::fprintf(stderr, "kkt: assemble %.4fs factorize %.4fs bordering %.4fs\n", t_assemble, t_factor, lap());
   return true;
+}
+
+void NormalEquations::finish_bordering(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  llt_solve2(b, hxk_, x, u_);
+  border_pending_ = false;
+  PhaseTimer border_timer(timers_.border_wall, timers_.border_cpu);
+  // S = h_kk - h_xk^T u cancels badly near the optimum (each active cone adds two huge,
+  // nearly equal terms). The same number is min over x of (x,1)^T H (x,1), attained at
+  // x = -u: S = sum_i ||W_i^{-1} M_i (-u, 1)||^2, a sum of squares without cancellation
+  // (plus the regularisation's share, which the factor also contains).
+  Eigen::VectorXd mv, wm;
+  p_.apply_m(-u_, 1.0, false, mv);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, wm);
+  const double* values = matrix_.valuePtr();
+  double reg_part = 0;
+  for (int d = 0; d < p_.num_x; ++d) reg_part += (values[diagonal_[d]] - diag_saved_[d]) * u_[d] * u_[d];
+  schur_ = wm.squaredNorm() + reg_part;
+  if (p_.has_quad()) {
+    Eigen::VectorXd pu;
+    p_.apply_p(u_, pu);
+    schur_ += u_.dot(pu);
+  }
+  if (!(schur_ > 0) || !std::isfinite(schur_) || !u_.allFinite()) {
+    border_failed_ = true;
+    schur_ = std::numeric_limits<double>::quiet_NaN();  // every direction comes out non-finite
+  }
 }
 
 void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2,
@@ -372,7 +409,10 @@ void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const
   }
   Eigen::VectorXd b = r1x;
   if (p_.num_eq() > 0) b.noalias() += inv_rho_ * (at_ * r2);
-  dx = llt_solve(b);
+  if (border_pending_)
+    finish_bordering(b, dx);
+  else
+    dx = llt_solve(b);
   if (p_.has_k) {
     dk = (r1k - hxk_.dot(dx)) / schur_;
     dx.noalias() -= dk * u_;

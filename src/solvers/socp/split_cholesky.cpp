@@ -24,8 +24,8 @@ struct SplitCholesky::Half {
   std::vector<int> source;            // B's nonzeros -> A's
   SupernodalCholesky cholesky;        // of B; its postorder keeps the separator last
   Eigen::MatrixXd T, G;               // trailing factor block Tp and Tp Tp^T (lower)
-  // Solve workspace (one solve at a time per half).
-  mutable Eigen::VectorXd rhs, y;
+  // Solve workspace (one solve at a time per half); rhs2, y2: two right-hand sides interleaved.
+  mutable Eigen::VectorXd rhs, y, rhs2, y2;
 
   bool analyze() {
     if (!cholesky.analyze(B)) return false;
@@ -35,6 +35,7 @@ struct SplitCholesky::Half {
     T.setZero(ns, ns);
     G.setZero(ns, ns);
     rhs.resize(n + ns);
+    rhs2.resize(2 * (n + ns));
     return true;
   }
 
@@ -73,6 +74,48 @@ struct SplitCholesky::Half {
     const int one = 1;
     dtrmv_("L", "N", "N", &ns, T.data(), &ns, g.data(), &one);
     g = -g;
+  }
+  // forward for two right-hand sides at once.
+  void forward2(const double* b0, const double* b1, Eigen::VectorXd& g0, Eigen::VectorXd& g1) const {
+    const std::vector<int>& perm = cholesky.permutation();
+    for (int k = 0; k < n; ++k) {
+      rhs2[2 * k] = b0[perm[k]];
+      rhs2[2 * k + 1] = b1[perm[k]];
+    }
+    rhs2.tail(2 * ns).setZero();
+    cholesky.forward2_in_place(rhs2.data());
+    y2 = rhs2;
+    g0.resize(ns);
+    g1.resize(ns);
+    for (int k = 0; k < ns; ++k) {
+      g0[k] = y2[2 * (n + k)];
+      g1[k] = y2[2 * (n + k) + 1];
+    }
+    const int one = 1;
+    dtrmv_("L", "N", "N", &ns, T.data(), &ns, g0.data(), &one);
+    dtrmv_("L", "N", "N", &ns, T.data(), &ns, g1.data(), &one);
+    g0 = -g0;
+    g1 = -g1;
+  }
+  // backward for two right-hand sides at once.
+  void backward2(const Eigen::VectorXd& xs0, const Eigen::VectorXd& xs1, double* x0, double* x1) const {
+    rhs2.head(2 * n) = y2.head(2 * n);
+    Eigen::VectorXd t0 = xs0, t1 = xs1;
+    if (ns > 0) {
+      const int one = 1;
+      dtrmv_("L", "T", "N", &ns, T.data(), &ns, t0.data(), &one);
+      dtrmv_("L", "T", "N", &ns, T.data(), &ns, t1.data(), &one);
+    }
+    for (int k = 0; k < ns; ++k) {
+      rhs2[2 * (n + k)] = t0[k];
+      rhs2[2 * (n + k) + 1] = t1[k];
+    }
+    cholesky.backward2_in_place(rhs2.data());
+    const std::vector<int>& perm = cholesky.permutation();
+    for (int k = 0; k < n; ++k) {
+      x0[perm[k]] = rhs2[2 * k];
+      x1[perm[k]] = rhs2[2 * k + 1];
+    }
   }
   // Backward: [x_part; v] = L^-T [y_part; T^T x_sep] (then v = x_sep).
   void backward(const Eigen::VectorXd& x_sep, double* x_part) const {
@@ -174,6 +217,30 @@ void SplitCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   }
   tbb::parallel_invoke([&] { half_[0]->backward(xs, x.data() + half_[0]->off); },
                        [&] { half_[1]->backward(xs, x.data() + half_[1]->off); });
+}
+
+void SplitCholesky::solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0,
+                           Eigen::VectorXd& x1) const {
+  x0.resize(n_);
+  x1.resize(n_);
+  Eigen::VectorXd g[2][2];
+  tbb::parallel_invoke(
+      [&] { half_[0]->forward2(b0.data() + half_[0]->off, b1.data() + half_[0]->off, g[0][0], g[0][1]); },
+      [&] { half_[1]->forward2(b0.data() + half_[1]->off, b1.data() + half_[1]->off, g[1][0], g[1][1]); });
+  Eigen::MatrixXd xs(ns_, 2);
+  if (ns_ > 0) {
+    xs.col(0) = b0.tail(ns_) - g[0][0] - g[1][0];
+    xs.col(1) = b1.tail(ns_) - g[0][1] - g[1][1];
+    const int two = 2;
+    int info = 0;
+    dpotrs_("L", &ns_, &two, s_.data(), &ns_, xs.data(), &ns_, &info);
+    x0.tail(ns_) = xs.col(0);
+    x1.tail(ns_) = xs.col(1);
+  }
+  const Eigen::VectorXd xs0 = xs.col(0), xs1 = xs.col(1);
+  tbb::parallel_invoke(
+      [&] { half_[0]->backward2(xs0, xs1, x0.data() + half_[0]->off, x1.data() + half_[0]->off); },
+      [&] { half_[1]->backward2(xs0, xs1, x0.data() + half_[1]->off, x1.data() + half_[1]->off); });
 }
 
 double SplitCholesky::flops() const {

@@ -91,6 +91,38 @@ void SupernodalCholesky::backward_in_place(double* y) const {
     cholmod_solve_in_place(CHOLMOD_Lt, y);
 }
 
+void SupernodalCholesky::forward2_in_place(double* y) const {
+  if (own_solve_)
+    supernodal_forward2(*L_, y);
+  else
+    cholmod_solve2_in_place(CHOLMOD_L, y);
+}
+
+void SupernodalCholesky::backward2_in_place(double* y) const {
+  if (own_solve_)
+    supernodal_backward2(*L_, y);
+  else
+    cholmod_solve2_in_place(CHOLMOD_Lt, y);
+}
+
+void SupernodalCholesky::solve2(const double* b0, const double* b1, double* x0, double* x1) const {
+  const int n = static_cast<int>(perm_.size());
+  if (n == 0) return;
+  thread_local std::vector<double> work;
+  if (static_cast<int>(work.size()) < 2 * n) work.resize(2 * static_cast<size_t>(n));
+  double* y = work.data();
+  for (int k = 0; k < n; ++k) {
+    y[2 * k] = b0[perm_[k]];
+    y[2 * k + 1] = b1[perm_[k]];
+  }
+  forward2_in_place(y);
+  backward2_in_place(y);
+  for (int k = 0; k < n; ++k) {
+    x0[perm_[k]] = y[2 * k];
+    x1[perm_[k]] = y[2 * k + 1];
+  }
+}
+
 void SupernodalCholesky::solve(const double* b, double* x) const {
   const int n = static_cast<int>(perm_.size());
   if (n == 0) return;
@@ -101,6 +133,16 @@ void SupernodalCholesky::solve(const double* b, double* x) const {
   forward_in_place(y);
   backward_in_place(y);
   for (int k = 0; k < n; ++k) x[perm_[k]] = y[k];
+}
+
+void SupernodalCholesky::cholmod_solve2_in_place(int system, double* y) const {
+  const size_t n = perm_.size();
+  std::vector<double> column(n);
+  for (int c = 0; c < 2; ++c) {
+    for (size_t k = 0; k < n; ++k) column[k] = y[2 * k + c];
+    cholmod_solve_in_place(system, column.data());
+    for (size_t k = 0; k < n; ++k) y[2 * k + c] = column[k];
+  }
 }
 
 void SupernodalCholesky::cholmod_solve_in_place(int system, double* y) const {

@@ -117,3 +117,82 @@ void supernodal_backward(const cholmod_factor& L, double* x) {
 }
 
 }  // namespace strictmin::socp
+
+namespace strictmin::socp {
+
+STRICTMIN_VECTOR_CLONES
+void supernodal_forward2(const cholmod_factor& L, double* x) {
+  const SupernodalView view(L);
+  for (long k = 0; k < view.count; ++k) {
+    const Supernode sn = view[k];
+    double* xs = x + 2 * static_cast<long>(sn.first);
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows;
+      const double inv = 1.0 / column[j];
+      const double a = xs[2 * j] * inv, b = xs[2 * j + 1] * inv;
+      xs[2 * j] = a;
+      xs[2 * j + 1] = b;
+      for (int i = j + 1; i < sn.cols; ++i) {
+        xs[2 * i] -= column[i] * a;
+        xs[2 * i + 1] -= column[i] * b;
+      }
+    }
+    const int below = sn.rows - sn.cols;
+    if (below == 0) continue;
+    double* acc = below_buffer(2 * below);
+    for (int i = 0; i < 2 * below; ++i) acc[i] = 0.0;
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows + sn.cols;
+      const double a = xs[2 * j], b = xs[2 * j + 1];
+      for (int i = 0; i < below; ++i) {
+        acc[2 * i] += column[i] * a;
+        acc[2 * i + 1] += column[i] * b;
+      }
+    }
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) {
+      x[2 * static_cast<long>(index[i])] -= acc[2 * i];
+      x[2 * static_cast<long>(index[i]) + 1] -= acc[2 * i + 1];
+    }
+  }
+}
+
+STRICTMIN_VECTOR_CLONES
+void supernodal_backward2(const cholmod_factor& L, double* x) {
+  const SupernodalView view(L);
+  for (long k = view.count - 1; k >= 0; --k) {
+    const Supernode sn = view[k];
+    double* xs = x + 2 * static_cast<long>(sn.first);
+    const int below = sn.rows - sn.cols;
+    double* xb = below_buffer(2 * below);
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) {
+      xb[2 * i] = x[2 * static_cast<long>(index[i])];
+      xb[2 * i + 1] = x[2 * static_cast<long>(index[i]) + 1];
+    }
+    for (int j = sn.cols - 1; j >= 0; --j) {
+      const double* column = sn.val + static_cast<long>(j) * sn.rows;
+      const double* rect = column + sn.cols;
+      double a0 = 0, a1 = 0, b0 = 0, b1 = 0;  // two partial sums per right-hand side
+      int i = 0;
+      for (; i + 1 < below; i += 2) {
+        a0 += rect[i] * xb[2 * i];
+        b0 += rect[i] * xb[2 * i + 1];
+        a1 += rect[i + 1] * xb[2 * i + 2];
+        b1 += rect[i + 1] * xb[2 * i + 3];
+      }
+      for (; i < below; ++i) {
+        a0 += rect[i] * xb[2 * i];
+        b0 += rect[i] * xb[2 * i + 1];
+      }
+      for (i = j + 1; i < sn.cols; ++i) {
+        a1 += column[i] * xs[2 * i];
+        b1 += column[i] * xs[2 * i + 1];
+      }
+      xs[2 * j] = (xs[2 * j] - (a0 + a1)) / column[j];
+      xs[2 * j + 1] = (xs[2 * j + 1] - (b0 + b1)) / column[j];
+    }
+  }
+}
+
+}  // namespace strictmin::socp

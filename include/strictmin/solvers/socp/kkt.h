@@ -72,6 +72,9 @@ class NormalEquations {
   void solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx, double rdk,
                     const Eigen::VectorXd& req, Direction& d, double tolerance = 0);
 
+  // True when the last factorisation turned out unusable at its first solve (the bordering's
+  // Schur complement not positive: see finish_bordering); the directions are then not finite.
+  bool bordering_failed() const { return border_failed_; }
   double regularization() const { return delta_; }
   Eigen::Index matrix_nonzeros() const { return matrix_.nonZeros(); }
   double analyze_flops() const;  // CHOLMOD's flop count of one factorisation
@@ -111,10 +114,21 @@ class NormalEquations {
   std::unique_ptr<SplitCholesky> split_;          // or its halves in parallel (large ones)
   int split_sizes_[3] = {0, 0, 0};         // dofs of the halves and the separator
   Eigen::VectorXd llt_solve(const Eigen::VectorXd& b) const;  // in dof numbering
+  // Two right-hand sides with one pass over the factor.
+  void llt_solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0,
+                  Eigen::VectorXd& x1) const;
+  // x = H_xx^{-1} b for the first right-hand side after a factorisation, solved together with
+  // u = H_xx^{-1} h_xk, and the Schur complement S from u.
+  void finish_bordering(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   double delta_ = 0, inv_rho_ = 0;
   Eigen::VectorXd diag_saved_;
-  Eigen::VectorXd hxk_, u_;                // k column and H_xx^{-1} h_xk
-  double hkk_ = 0, schur_ = 1;
+  // k column and H_xx^{-1} h_xk, the Schur complement; u and S are computed with the first
+  // solve after a factorisation (finish_bordering: mutable, filled in by a const solve).
+  Eigen::VectorXd hxk_;
+  mutable Eigen::VectorXd u_;
+  double hkk_ = 0;
+  mutable double schur_ = 1;
+  mutable bool border_pending_ = false, border_failed_ = false;
   mutable KktTimers timers_;
 };
 

@@ -37,6 +37,8 @@ class SplitCholesky {
   bool factorize(const double* values);
   // x = A^-1 b (b and x in the matrix's order; x may not alias b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  // x0 = A^-1 b0 and x1 = A^-1 b1 with one pass over the factors.
+  void solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0, Eigen::VectorXd& x1) const;
   double flops() const;     // CHOLMOD's flop counts of the halves plus the dense part
   double nonzeros() const;  // nonzeros of the halves' factors plus the dense part
 

@@ -35,6 +35,8 @@ class SupernodalCholesky {
   bool factorize(const double* values);
   // x = A^-1 b in the matrix's order (x may alias b).
   void solve(const double* b, double* x) const;
+  // x0 = A^-1 b0 and x1 = A^-1 b1 with one pass over the factor.
+  void solve2(const double* b0, const double* b1, double* x0, double* x1) const;
 
   // The factor is of P A P^T with P from CHOLMOD's postorder: row k of P A P^T is row
   // permutation()[k] of A. In place, in that order: y <- L^-1 y and y <- L^-T y.
@@ -42,12 +44,16 @@ class SupernodalCholesky {
   const std::vector<int>& permutation() const { return perm_; }
   void forward_in_place(double* y) const;
   void backward_in_place(double* y) const;
+  // The same for two right-hand sides, interleaved (y[2 k], y[2 k + 1]).
+  void forward2_in_place(double* y) const;
+  void backward2_in_place(double* y) const;
 
   double flops() const { return common_.fl; }      // of one factorisation
   double nonzeros() const { return common_.lnz; }  // nnz(L)
 
  private:
   void cholmod_solve_in_place(int system, double* y) const;
+  void cholmod_solve2_in_place(int system, double* y) const;
   const Eigen::SparseMatrix<double>* pattern_ = nullptr;
   int stype_ = 1;  // CHOLMOD's: 1 upper, -1 lower
   mutable cholmod_common common_;

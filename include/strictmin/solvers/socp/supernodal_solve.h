@@ -19,4 +19,9 @@ bool supports_supernodal_solve(const cholmod_factor& L);
 void supernodal_forward(const cholmod_factor& L, double* x);
 void supernodal_backward(const cholmod_factor& L, double* x);
 
+// The same for two right-hand sides at once, interleaved (x[2 i], x[2 i + 1] are row i of the
+// first and the second): the factor is streamed once for both.
+void supernodal_forward2(const cholmod_factor& L, double* x);
+void supernodal_backward2(const cholmod_factor& L, double* x);
+
 }  // namespace strictmin::socp
