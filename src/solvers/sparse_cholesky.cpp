@@ -105,7 +105,10 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
     X.setConstant(std::numeric_limits<double>::quiet_NaN());
     return X;
   }
-  for (Eigen::Index c = 0; c < B.cols(); ++c) cholesky_->solve(B.col(c).data(), X.col(c).data());
+  Eigen::Index c = 0;
+  for (; c + 1 < B.cols(); c += 2)  // two columns per pass over the factor
+    cholesky_->solve2(B.col(c).data(), B.col(c + 1).data(), X.col(c).data(), X.col(c + 1).data());
+  if (c < B.cols()) cholesky_->solve(B.col(c).data(), X.col(c).data());
   return X;
 }
 

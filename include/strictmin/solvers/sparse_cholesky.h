@@ -49,7 +49,7 @@ class SparseCholesky {
   void analyze(const Eigen::SparseMatrix<double>& A);
   // False when A is not (numerically) positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& A);
-  // A^{-1} B, column by column.
+  // A^{-1} B, two columns per pass over the factor.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   bool analyzed() const { return analyzed_; }
 
