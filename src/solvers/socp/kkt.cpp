@@ -148,23 +148,37 @@ void NormalEquations::build_pattern() {
   const Eigen::Index nnz = matrix_.nonZeros();
   slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
   p_values_.setZero(nnz);
+  // Each element pair's nonzero (binary searches: in parallel), then the counts.
+  parallel_for_index(E, kGrain, [&](int begin, int end) {
+    std::vector<int> local(L);
+    for (int i = begin; i < end; ++i) {
+      for (int j = 0; j < c; ++j)
+        for (int r = 0; r < n; ++r) {
+          const int base = p_.dof_base[i * c + j];
+          local[j * n + r] = base < 0 ? -1 : perm_[base + r];
+        }
+      for (int l1 = 0; l1 < L; ++l1)
+        for (int l2 = 0; l2 <= l1; ++l2)
+          if (local[l1] >= 0 && local[l2] >= 0)
+            slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)] =
+                find(std::min(local[l1], local[l2]), std::max(local[l1], local[l2]));
+    }
+  });
   std::vector<int> count(nnz + 1, 0);
-  for (int i = 0; i < E; ++i) {
-    element_dofs(i);
-    const double* g = p_.grad.data() + static_cast<size_t>(i) * c * p_.m;
-    for (int l1 = 0; l1 < L; ++l1)
-      for (int l2 = 0; l2 <= l1; ++l2) {
-        if (dof[l1] < 0 || dof[l2] < 0) continue;
-        const int nz = find(std::min(dof[l1], dof[l2]), std::max(dof[l1], dof[l2]));
-        slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)] = nz;
-        ++count[nz + 1];
-        if (p_.has_quad() && l1 % n == l2 % n) {
+  for (int target : slot_target_)
+    if (target >= 0) ++count[target + 1];
+  if (p_.has_quad())
+    for (int i = 0; i < E; ++i) {
+      const double* g = p_.grad.data() + static_cast<size_t>(i) * c * p_.m;
+      for (int l1 = 0; l1 < L; ++l1)
+        for (int l2 = 0; l2 <= l1; ++l2) {
+          const int nz = slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)];
+          if (nz < 0 || l1 % n != l2 % n) continue;
           double gram = 0;
           for (int col = 0; col < p_.m; ++col) gram += g[(l1 / n) * p_.m + col] * g[(l2 / n) * p_.m + col];
           p_values_[nz] += 2.0 * p_.quad_weight[i] * gram;
         }
-      }
-  }
+    }
   for (Eigen::Index z = 0; z < nnz; ++z) count[z + 1] += count[z];
   gather_offset_.assign(count.begin(), count.end());
   gather_.assign(count.back(), 0);
