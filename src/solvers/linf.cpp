@@ -161,6 +161,7 @@ struct MainSolve {
   int last_progress_iteration = 0;
   Eigen::VectorXd multipliers;  // per element cone, of the best certificate
   bool stalled = false;
+  bool last_certified = true;  // the monitor formed the certificate of the last iterate
 };
 
 }  // namespace
@@ -331,6 +332,14 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   socp::IpmState st;
   const double k0 = start_above(start.kmax);
   socp::initialize(prog, start.x, k0, 1e-2 * (1.0 + std::abs(k0)), 1.0, st);
+  auto certify_iterate = [&](const socp::IpmState& s) {
+    Eigen::VectorXd lambda;
+    const double lb = socp::certified_lower_bound(prog, ls, s.z, s.y, &lambda);
+    if (lb > ms.lower_bound) {
+      ms.lower_bound = lb;
+      ms.multipliers = std::move(lambda);
+    }
+  };
   analysis.wait();
   ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals& r,
                                                      const socp::IpmIteration& info) {
@@ -342,20 +351,16 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.x = s.x;
     }
     // The certificate costs a least-squares solve and three passes over the cones. Without
-    // anyone watching the progress it is formed only once the method's dual objective is
-    // within 10^4 times the tolerance of the best k (the certified bound is that objective,
-    // repaired): before, it could not end the solve.
+    // anyone watching the progress it is formed only once the method's dual objective or its
+    // own gap is within 10^4 times the tolerance of the best k, or its directions have become
+    // unreliable (a stall ends the solve on the best bound so far); before, it could not end
+    // the solve. The last iterate is certified after the method in any case.
     const double scale = std::max(1.0, std::abs(ms.k));
+    const double near = 1e4 * options.gap_tolerance * scale;
     const bool certify = options.progress || info.iteration == 0 || !std::isfinite(ms.k) ||
-                         ms.k - info.dobj <= 1e4 * options.gap_tolerance * scale;
-    if (certify) {
-      Eigen::VectorXd lambda;
-      const double lb = socp::certified_lower_bound(prog, ls, s.z, s.y, &lambda);
-      if (lb > ms.lower_bound) {
-        ms.lower_bound = lb;
-        ms.multipliers = std::move(lambda);
-      }
-    }
+                         ms.k - info.dobj <= near || info.gap <= near || info.kkt_residual > 1e-3;
+    if (certify) certify_iterate(s);
+    ms.last_certified = certify;
     IterationRecord rec;
     rec.iteration = info.iteration;
     rec.max_distortion = k;
@@ -385,6 +390,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     }
     return false;
   }, normal_equations.get());
+  if (!ms.last_certified) certify_iterate(st);
   if (ms.stalled) {
     ms.outcome.status = socp::IpmStatus::NumericalError;
     ms.outcome.message = "the certified gap stopped improving (the Newton systems are too ill-conditioned)";
