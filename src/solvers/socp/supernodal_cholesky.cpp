@@ -77,33 +77,24 @@ bool SupernodalCholesky::factorize(const double* values) {
   return true;
 }
 
-void SupernodalCholesky::forward_in_place(double* y) const {
+// One substitution (L or L^T) with one or two interleaved right-hand sides: our supernodal
+// loops, or CHOLMOD's solve for a factor they do not handle.
+void SupernodalCholesky::substitute(int system, int columns, double* y) const {
+  using Loop = void (*)(const cholmod_factor&, double*);
+  static constexpr Loop loops[2][2] = {{supernodal_forward, supernodal_backward},
+                                       {supernodal_forward2, supernodal_backward2}};
   if (own_solve_)
-    supernodal_forward(*L_, y);
+    loops[columns - 1][system == CHOLMOD_L ? 0 : 1](*L_, y);
+  else if (columns == 1)
+    cholmod_solve_in_place(system, y);
   else
-    cholmod_solve_in_place(CHOLMOD_L, y);
+    cholmod_solve2_in_place(system, y);
 }
 
-void SupernodalCholesky::backward_in_place(double* y) const {
-  if (own_solve_)
-    supernodal_backward(*L_, y);
-  else
-    cholmod_solve_in_place(CHOLMOD_Lt, y);
-}
-
-void SupernodalCholesky::forward2_in_place(double* y) const {
-  if (own_solve_)
-    supernodal_forward2(*L_, y);
-  else
-    cholmod_solve2_in_place(CHOLMOD_L, y);
-}
-
-void SupernodalCholesky::backward2_in_place(double* y) const {
-  if (own_solve_)
-    supernodal_backward2(*L_, y);
-  else
-    cholmod_solve2_in_place(CHOLMOD_Lt, y);
-}
+void SupernodalCholesky::forward_in_place(double* y) const { substitute(CHOLMOD_L, 1, y); }
+void SupernodalCholesky::backward_in_place(double* y) const { substitute(CHOLMOD_Lt, 1, y); }
+void SupernodalCholesky::forward2_in_place(double* y) const { substitute(CHOLMOD_L, 2, y); }
+void SupernodalCholesky::backward2_in_place(double* y) const { substitute(CHOLMOD_Lt, 2, y); }
 
 void SupernodalCholesky::solve2(const double* b0, const double* b1, double* x0, double* x1) const {
   const int n = static_cast<int>(perm_.size());

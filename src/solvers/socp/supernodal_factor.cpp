@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "strictmin/solvers/socp/vector_clones.h"
+
 extern "C" {
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
@@ -11,13 +13,6 @@ void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* inf
 void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
             const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
 }
-
-// As in supernodal_solve.cpp: the loops are compiled for AVX2 as well as the baseline.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define STRICTMIN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define STRICTMIN_VECTOR_CLONES
-#endif
 
 namespace strictmin::socp {
 namespace {

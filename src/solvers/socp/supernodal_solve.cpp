@@ -2,13 +2,7 @@
 
 #include <vector>
 
-// The substitutions are memory-bound loops over the factor: on x86-64 they are compiled for
-// AVX2 as well and the loader picks the variant the processor runs (the binary stays portable).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define STRICTMIN_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define STRICTMIN_VECTOR_CLONES
-#endif
+#include "strictmin/solvers/socp/vector_clones.h"
 
 namespace strictmin::socp {
 namespace {

@@ -52,6 +52,7 @@ class SupernodalCholesky {
   double nonzeros() const { return common_.lnz; }  // nnz(L)
 
  private:
+  void substitute(int system, int columns, double* y) const;
   void cholmod_solve_in_place(int system, double* y) const;
   void cholmod_solve2_in_place(int system, double* y) const;
   const Eigen::SparseMatrix<double>* pattern_ = nullptr;
