@@ -101,8 +101,12 @@ void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::
     }
     if (make_ds) {
       double* s = ds->data() + o;
-      const double* r = rs->data() + o;
-      for (int a = 0; a < d; ++a) s[a] = m[a] - r[a];
+      if (rs->size() == 0) {
+        for (int a = 0; a < d; ++a) s[a] = m[a];
+      } else {
+        const double* r = rs->data() + o;
+        for (int a = 0; a < d; ++a) s[a] = m[a] - r[a];
+      }
       if (dst) apply_winv(beta, w, d, s, dst->data() + o);
     }
     if (dzt) apply_w(beta, w, d, dz->data() + o, dzt->data() + o);

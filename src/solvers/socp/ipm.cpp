@@ -107,7 +107,8 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
   }
   Scaling sc;
   Eigen::VectorXd ll, corr, rc, qa, qc, s_new, z_new;
-  Eigen::VectorXd st_trial, zt_trial, vprod, tcorr, qg, zero_rs, zero_rdx, zero_req;  // correctors
+  // Correctors: r_s = 0 is passed as an empty vector (solve_newton skips its pass).
+  Eigen::VectorXd st_trial, zt_trial, vprod, tcorr, qg, zero_rs, zero_rdx, zero_req;
   int small_steps = 0, bad_directions = 0;
   for (int it = 1; it <= settings.max_iterations; ++it) {
     out.iterations = it;
@@ -167,7 +168,6 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
       const double mu_target = std::max(sigma, 1e-3) * mu;  // never aim at the boundary
       cone_centrality_correction(p, vprod, 0.1 * mu_target, 10.0 * mu_target, tcorr);
       cone_arrow_solve(p, sc.lambda, tcorr, qg);
-      if (zero_rs.size() != res.rs.size()) zero_rs.setZero(res.rs.size());
       if (zero_rdx.size() != res.rdx.size()) zero_rdx.setZero(res.rdx.size());
       if (zero_req.size() != res.req.size()) zero_req.setZero(res.req.size());
       Direction cd;

@@ -536,8 +536,12 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
                                    double rdk, const Eigen::VectorXd& req, Direction& d, double tolerance) {
   const Scaling& sc = *scaling_;
   Eigen::VectorXd rc, t;
-  apply_scaling(p_, sc, ScalingOp::WInv, rs, t);
-  rc = q + t;
+  if (rs.size() == 0) {  // r_s = 0 (the centrality correctors): no pass over the cones
+    rc = q;
+  } else {
+    apply_scaling(p_, sc, ScalingOp::WInv, rs, t);
+    rc = q + t;
+  }
   const Eigen::VectorXd re = -req;
   Eigen::VectorXd w;
   int steps = 0;

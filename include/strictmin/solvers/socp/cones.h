@@ -24,7 +24,8 @@ void apply_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op, const 
 // The cone parts of a Newton direction from its (dx, dk), in one pass over the cones
 // instead of one per operation (m = M (dx, dk) is formed per cone and never stored):
 //   with rc, dz:        dz  = W^-1 (rc - W^-1 m)            (the eliminated dz of the system)
-//   with rs, ds, dst:   ds  = m - rs,  dst = W^-1 ds        (the primal step, scaled)
+//   with rs, ds, dst:   ds  = m - rs,  dst = W^-1 ds        (the primal step, scaled;
+//                                                            an empty rs stands for 0)
 //   with dzt:           dzt = W dz                          (dz computed here or given)
 // Null pointers skip a part; dz is an input when rc is null.
 void cone_direction_parts(const ConeProgram& p, const Scaling& sc, const Eigen::VectorXd& dx, double dk,

@@ -67,6 +67,7 @@ class NormalEquations {
   //   ds = M dv - r_s.
   // Solved by the normal equations, then refined against this (unreduced) system, so that the
   // dual equations hold to round-off in G and dz (not in the far larger W^{-2}).
+  // An empty rs stands for r_s = 0.
   // tolerance: relative residual the refinement aims at (<= 0: settings.refinement_tolerance);
   // the predictor and the centrality correctors need far less than the step's direction.
   void solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx, double rdk,
