@@ -440,9 +440,9 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     Eigen::VectorXd best_x;
     socp::IpmSettings s2 = settings;
     const int offset = result.history.empty() ? 0 : result.history.back().iteration;
-    const auto out2 = socp::run_ipm(q, st2, s2, [&](const socp::IpmState& s, const socp::Residuals& r,
+    const auto out2 = socp::run_ipm(q, st2, s2, [&](const socp::IpmState&, const socp::Residuals& r,
                                                     const socp::IpmIteration& info) {
-      const Eigen::VectorXd d = socp::cone_distortions(q, s.x);
+      const Eigen::VectorXd& d = r.tail_norms;  // the distortions at s.x
       double k = has_kmin ? cls.constant_max : -kInf;
       for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
       IterationRecord rec;

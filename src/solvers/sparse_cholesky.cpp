@@ -78,7 +78,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
 }
 
 bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double>& A) const {
-  if (!A.isCompressed() || A.rows() != pattern_.rows() || A.cols() != pattern_.cols() ||
+  if (A.rows() != pattern_.rows() || A.cols() != pattern_.cols() ||
       A.nonZeros() != pattern_.nonZeros())
     return false;
   const Eigen::Index n = A.outerSize(), nnz = A.nonZeros();
@@ -87,15 +87,13 @@ bool SparseCholesky::same_pattern(const Eigen::SparseMatrix<double>& A) const {
 }
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  if (!analyzed_ || !same_pattern(A)) {
+  if (!A.isCompressed()) {  // the factor reads the values in compressed order
     Eigen::SparseMatrix<double> compressed = A;
     compressed.makeCompressed();
-    analyze(compressed);
-    if (!analyzed_) return false;
-    factorized_ = cholesky_->factorize(pattern_.valuePtr());
-    return factorized_;
+    return factorize(compressed);
   }
-  factorized_ = cholesky_->factorize(A.valuePtr());
+  if (!analyzed_ || !same_pattern(A)) analyze(A);
+  factorized_ = analyzed_ && cholesky_->factorize(A.valuePtr());
   return factorized_;
 }
 

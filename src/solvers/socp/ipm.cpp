@@ -180,7 +180,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
       if (!(tmax >= cmax + settings.corrector_acceptance * (target - cmax)) || !cd.dx.allFinite()) break;
       dir.dx += cd.dx;
       dir.dk += cd.dk;
-      if (dir.dy.size() == cd.dy.size()) dir.dy += cd.dy;
+      dir.dy += cd.dy;
       dir.ds += cd.ds;
       dir.dz += cd.dz;
       dir.dst += cd.dst;

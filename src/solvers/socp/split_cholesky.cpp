@@ -24,8 +24,8 @@ struct SplitCholesky::Half {
   std::vector<int> source;            // B's nonzeros -> A's
   SupernodalCholesky cholesky;        // of B; its postorder keeps the separator last
   Eigen::MatrixXd T, G;               // trailing factor block Tp and Tp Tp^T (lower)
-  // Solve workspace (one solve at a time per half); rhs2, y2: two right-hand sides interleaved.
-  mutable Eigen::VectorXd rhs, y, rhs2, y2;
+  // Solve workspace (one solve at a time per half).
+  mutable Eigen::VectorXd work, y;
 
   bool analyze() {
     if (!cholesky.analyze(B)) return false;
@@ -34,8 +34,6 @@ struct SplitCholesky::Half {
       if (perm[k] != k) return false;
     T.setZero(ns, ns);
     G.setZero(ns, ns);
-    rhs.resize(n + ns);
-    rhs2.resize(2 * (n + ns));
     return true;
   }
 
@@ -63,71 +61,37 @@ struct SplitCholesky::Half {
     return true;
   }
 
-  // Forward: rhs = [b_part; 0] (the factor's order), y = L^-1 rhs; g = C y_part = -T y_sep.
-  void forward(const double* b_part, Eigen::VectorXd& g) const {
+  // R right-hand sides (1 or 2), interleaved in the work vector (row k of column c at R k + c)
+  // so that one pass over the factor serves all of them. b[c] and x[c] point at this half's
+  // part of column c.
+  // Forward: work = [b_part; 0] (the factor's order), y = L^-1 work; g = C y_part = -T y_sep.
+  void forward(const double* const* b, int R, Eigen::MatrixXd& g) const {
     const std::vector<int>& perm = cholesky.permutation();
-    for (int k = 0; k < n; ++k) rhs[k] = b_part[perm[k]];
-    rhs.tail(ns).setZero();
-    cholesky.forward_in_place(rhs.data());
-    y = rhs;
-    g = y.tail(ns);
+    work.resize(static_cast<Eigen::Index>(R) * (n + ns));
+    for (int k = 0; k < n; ++k)
+      for (int c = 0; c < R; ++c) work[R * k + c] = b[c][perm[k]];
+    work.tail(R * ns).setZero();
+    R == 1 ? cholesky.forward_in_place(work.data()) : cholesky.forward2_in_place(work.data());
+    y = work;
+    g.resize(ns, R);
+    for (int k = 0; k < ns; ++k)
+      for (int c = 0; c < R; ++c) g(k, c) = y[R * (n + k) + c];
     const int one = 1;
-    dtrmv_("L", "N", "N", &ns, T.data(), &ns, g.data(), &one);
+    for (int c = 0; c < R; ++c) dtrmv_("L", "N", "N", &ns, T.data(), &ns, g.col(c).data(), &one);
     g = -g;
   }
-  // forward for two right-hand sides at once.
-  void forward2(const double* b0, const double* b1, Eigen::VectorXd& g0, Eigen::VectorXd& g1) const {
-    const std::vector<int>& perm = cholesky.permutation();
-    for (int k = 0; k < n; ++k) {
-      rhs2[2 * k] = b0[perm[k]];
-      rhs2[2 * k + 1] = b1[perm[k]];
-    }
-    rhs2.tail(2 * ns).setZero();
-    cholesky.forward2_in_place(rhs2.data());
-    y2 = rhs2;
-    g0.resize(ns);
-    g1.resize(ns);
-    for (int k = 0; k < ns; ++k) {
-      g0[k] = y2[2 * (n + k)];
-      g1[k] = y2[2 * (n + k) + 1];
-    }
-    const int one = 1;
-    dtrmv_("L", "N", "N", &ns, T.data(), &ns, g0.data(), &one);
-    dtrmv_("L", "N", "N", &ns, T.data(), &ns, g1.data(), &one);
-    g0 = -g0;
-    g1 = -g1;
-  }
-  // backward for two right-hand sides at once.
-  void backward2(const Eigen::VectorXd& xs0, const Eigen::VectorXd& xs1, double* x0, double* x1) const {
-    rhs2.head(2 * n) = y2.head(2 * n);
-    Eigen::VectorXd t0 = xs0, t1 = xs1;
-    if (ns > 0) {
-      const int one = 1;
-      dtrmv_("L", "T", "N", &ns, T.data(), &ns, t0.data(), &one);
-      dtrmv_("L", "T", "N", &ns, T.data(), &ns, t1.data(), &one);
-    }
-    for (int k = 0; k < ns; ++k) {
-      rhs2[2 * (n + k)] = t0[k];
-      rhs2[2 * (n + k) + 1] = t1[k];
-    }
-    cholesky.backward2_in_place(rhs2.data());
-    const std::vector<int>& perm = cholesky.permutation();
-    for (int k = 0; k < n; ++k) {
-      x0[perm[k]] = rhs2[2 * k];
-      x1[perm[k]] = rhs2[2 * k + 1];
-    }
-  }
   // Backward: [x_part; v] = L^-T [y_part; T^T x_sep] (then v = x_sep).
-  void backward(const Eigen::VectorXd& x_sep, double* x_part) const {
-    rhs.head(n) = y.head(n);
-    rhs.tail(ns) = x_sep;
-    if (ns > 0) {
-      const int one = 1;
-      dtrmv_("L", "T", "N", &ns, T.data(), &ns, rhs.data() + n, &one);
-    }
-    cholesky.backward_in_place(rhs.data());
+  void backward(const Eigen::MatrixXd& x_sep, int R, double* const* x) const {
+    work.head(R * n) = y.head(R * n);
+    Eigen::MatrixXd t = x_sep;
+    const int one = 1;
+    for (int c = 0; c < R && ns > 0; ++c) dtrmv_("L", "T", "N", &ns, T.data(), &ns, t.col(c).data(), &one);
+    for (int k = 0; k < ns; ++k)
+      for (int c = 0; c < R; ++c) work[R * (n + k) + c] = t(k, c);
+    R == 1 ? cholesky.backward_in_place(work.data()) : cholesky.backward2_in_place(work.data());
     const std::vector<int>& perm = cholesky.permutation();
-    for (int k = 0; k < n; ++k) x_part[perm[k]] = rhs[k];
+    for (int k = 0; k < n; ++k)
+      for (int c = 0; c < R; ++c) x[c][perm[k]] = work[R * k + c];
   }
 };
 
@@ -204,43 +168,42 @@ bool SplitCholesky::factorize(const double* values) {
 
 void SplitCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   x.resize(n_);
-  Eigen::VectorXd g0, g1;
-  tbb::parallel_invoke([&] { half_[0]->forward(b.data() + half_[0]->off, g0); },
-                       [&] { half_[1]->forward(b.data() + half_[1]->off, g1); });
-  Eigen::VectorXd xs = b.tail(ns_);
-  if (ns_ > 0) {
-    xs -= g0 + g1;
-    const int one = 1;
-    int info = 0;
-    dpotrs_("L", &ns_, &one, s_.data(), &ns_, xs.data(), &ns_, &info);
-    x.tail(ns_) = xs;
-  }
-  tbb::parallel_invoke([&] { half_[0]->backward(xs, x.data() + half_[0]->off); },
-                       [&] { half_[1]->backward(xs, x.data() + half_[1]->off); });
+  const double* bs[1] = {b.data()};
+  double* xs[1] = {x.data()};
+  solve_columns(bs, xs, 1);
 }
 
 void SplitCholesky::solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0,
                            Eigen::VectorXd& x1) const {
   x0.resize(n_);
   x1.resize(n_);
-  Eigen::VectorXd g[2][2];
-  tbb::parallel_invoke(
-      [&] { half_[0]->forward2(b0.data() + half_[0]->off, b1.data() + half_[0]->off, g[0][0], g[0][1]); },
-      [&] { half_[1]->forward2(b0.data() + half_[1]->off, b1.data() + half_[1]->off, g[1][0], g[1][1]); });
-  Eigen::MatrixXd xs(ns_, 2);
+  const double* bs[2] = {b0.data(), b1.data()};
+  double* xs[2] = {x0.data(), x1.data()};
+  solve_columns(bs, xs, 2);
+}
+
+void SplitCholesky::solve_columns(const double* const* b, double* const* x, int R) const {
+  const int sep = n_ - ns_;
+  Eigen::MatrixXd g[2];
+  auto forward = [&](int p) {
+    const double* part[2];
+    for (int c = 0; c < R; ++c) part[c] = b[c] + half_[p]->off;
+    half_[p]->forward(part, R, g[p]);
+  };
+  tbb::parallel_invoke([&] { forward(0); }, [&] { forward(1); });
+  Eigen::MatrixXd xs(ns_, R);
   if (ns_ > 0) {
-    xs.col(0) = b0.tail(ns_) - g[0][0] - g[1][0];
-    xs.col(1) = b1.tail(ns_) - g[0][1] - g[1][1];
-    const int two = 2;
+    for (int c = 0; c < R; ++c) xs.col(c) = Eigen::Map<const Eigen::VectorXd>(b[c] + sep, ns_) - g[0].col(c) - g[1].col(c);
     int info = 0;
-    dpotrs_("L", &ns_, &two, s_.data(), &ns_, xs.data(), &ns_, &info);
-    x0.tail(ns_) = xs.col(0);
-    x1.tail(ns_) = xs.col(1);
+    dpotrs_("L", &ns_, &R, s_.data(), &ns_, xs.data(), &ns_, &info);
+    for (int c = 0; c < R; ++c) Eigen::Map<Eigen::VectorXd>(x[c] + sep, ns_) = xs.col(c);
   }
-  const Eigen::VectorXd xs0 = xs.col(0), xs1 = xs.col(1);
-  tbb::parallel_invoke(
-      [&] { half_[0]->backward2(xs0, xs1, x0.data() + half_[0]->off, x1.data() + half_[0]->off); },
-      [&] { half_[1]->backward2(xs0, xs1, x0.data() + half_[1]->off, x1.data() + half_[1]->off); });
+  auto backward = [&](int p) {
+    double* part[2];
+    for (int c = 0; c < R; ++c) part[c] = x[c] + half_[p]->off;
+    half_[p]->backward(xs, R, part);
+  };
+  tbb::parallel_invoke([&] { backward(0); }, [&] { backward(1); });
 }
 
 double SplitCholesky::flops() const {

@@ -44,6 +44,8 @@ class SplitCholesky {
 
  private:
   struct Half;
+  // x[c] = A^-1 b[c] for R = 1 or 2 columns, one pass over the halves' factors.
+  void solve_columns(const double* const* b, double* const* x, int R) const;
   std::unique_ptr<Half> half_[2];
   int ns_ = 0, n_ = 0;
   std::vector<int> ass_source_, ass_row_, ass_col_;  // ASS entries: nonzero index, local row >= col
