@@ -73,8 +73,9 @@ double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& l
     const Eigen::Index o = p.cone_offset(i);
     const auto d = delta.segment(static_cast<Eigen::Index>(i) * tt, tt);
     const auto tail = z.segment(o + 1, tt);
-    // Head raised to keep the corrected point in the cone (also covers round-off in z).
-    const double head = std::max(z[o], tail.norm()) + d.norm();
+    // Head raised only as far as the corrected tail needs to stay in the cone (also covers
+    // round-off in z): cones with slack absorb the correction for free.
+    const double head = std::max(z[o], (tail + d).norm());
     if (multipliers) (*multipliers)[i] = head;
     objective += -p.head_b[i] * head + p.h.segment(static_cast<Eigen::Index>(i) * tt, tt).dot(tail + d);
     normalizer += p.head_a[i] * head;
