@@ -186,7 +186,10 @@ TEST(Direct, LevelsAfterTheFirstStopAtTheLevelGap) {
   Eigen::VectorXd a = loose.distortion, b = tight.distortion;
   std::sort(a.data(), a.data() + a.size(), std::greater<>());
   std::sort(b.data(), b.data() + b.size(), std::greater<>());
-  EXPECT_NEAR(a[0], b[0], 1e-8);
+  // Both top values lie in [k*, k* + 2e-8]: the first level certifies its k to 1e-8 (relative,
+  // k < 1), and the later levels hold its elements to their bound up to the feasibility
+  // tolerance 1e-8.
+  EXPECT_NEAR(a[0], b[0], 2e-8);
   for (int i = 0; i < 16; ++i) EXPECT_NEAR(a[i], b[i], o.delta_k) << "rank " << i;
   const Result linf = solve_linf(p);
   EXPECT_EQ(compare_strict(loose.distortion, linf.distortion, p.weights, o.delta_k).order, StrictOrder::Less);
@@ -234,11 +237,15 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
   EXPECT_GT(r.iterations, 3);
   EXPECT_TRUE(r.positions.allFinite());
   ASSERT_GE(r.history.size(), 3u);
-  EXPECT_NEAR(r.history[2].gap, widened, 1e-6);  // values below 1: the gap is absolute
-  EXPECT_NEAR(worst_level_gap(r), widened, 1e-6);
+  // The stalled level's gap: the widening on top of its own certified gap (values below 1: the
+  // gap is absolute), which is at most the level gap delta-k / 100.
+  const double level_gap = 1e-2 * o.delta_k + 1e-9;
+  EXPECT_GE(r.history[2].gap, widened);
+  EXPECT_LE(r.history[2].gap, widened + level_gap);
+  EXPECT_DOUBLE_EQ(worst_level_gap(r), r.history[2].gap);
   for (size_t i = 0; i < r.history.size(); ++i) {
     if (i == 2) continue;
-    EXPECT_LE(r.history[i].gap, 1e-2 * o.delta_k + 1e-9) << i;
+    EXPECT_LE(r.history[i].gap, level_gap) << i;
   }
   EXPECT_NE(r.message.find("1 of " + std::to_string(r.iterations) + " levels stopped short"), std::string::npos)
       << r.message;

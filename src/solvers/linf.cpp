@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -18,6 +19,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf_active_set.h"
 #include "strictmin/solvers/socp/certificate.h"
 #include "strictmin/solvers/socp/kkt.h"
 #include "strictmin/solvers/socp/fd_program.h"
@@ -160,6 +162,9 @@ struct MainSolve {
   double last_progress_gap = kInf;
   int last_progress_iteration = 0;
   Eigen::VectorXd multipliers;  // per element cone, of the best certificate
+  Eigen::VectorXd element_multipliers;  // or per element, when it came from an active-set bound
+  int active_set_attempts = 0, active_set_iteration = -1;
+  double active_set_bound = -kInf;  // of the last restriction tried
   bool stalled = false;
   bool last_certified = true;  // the monitor formed the certificate of the last iterate
 };
@@ -338,6 +343,58 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     if (lb > ms.lower_bound) {
       ms.lower_bound = lb;
       ms.multipliers = std::move(lambda);
+      ms.element_multipliers.resize(0);
+    }
+  };
+  // The restricted problem's bound (linf_active_set.h), tried once the method is within 1e3
+  // times the tolerance, at most three times, not in consecutive iterations. The restriction:
+  // the elements within reach of the maximum (bounded ones: of their bound), reach being ten
+  // times the certified gap (at least 1e3 times the tolerance), cut tenfold until at most
+  // max(1000, 5%) of the elements remain.
+  std::vector<std::pair<int, double>> constant_distortions;  // constant free elements
+  for (int e : cls.constant_elements)
+    if (!socp::has_bound(bounds, e))
+      constant_distortions.emplace_back(e, (p.jacobian(e, p.positions) - p.target(e)).norm());
+  Eigen::VectorXd effective_bounds = bounds;
+  for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
+    if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += relax;
+  auto try_active_set = [&](const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
+    const double scale = std::max(1.0, std::abs(ms.k));
+    const double tol = options.gap_tolerance * scale;
+    if (!options.active_set_bounds || !std::isfinite(ms.k) || ms.k - ms.lower_bound <= tol) return;
+    if (!(ms.k - info.dobj <= 1e3 * tol || info.gap <= 1e3 * tol)) return;
+    if (ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) return;
+    // A restriction tried before that misses part of the dual's support gives a bound below
+    // the optimum: retried (with a wider reach) only once the iterates' own dual objective
+    // passes that bound, or their gap falls well below the gap left to it.
+    if (ms.active_set_attempts > 0 && !(info.dobj > ms.active_set_bound + tol) &&
+        !(info.gap < 0.1 * (ms.k - ms.active_set_bound)))
+      return;
+    const size_t cap = std::max<size_t>(1000, E / 20);
+    double reach = 1e3 * std::max(ms.k - ms.lower_bound, tol) * std::pow(10.0, ms.active_set_attempts);
+    double zmax = 0;
+    for (int i = 0; i < prog.num_element_cones(); ++i) zmax = std::max(zmax, s.z[prog.cone_offset(i)]);
+    std::vector<int> chosen;
+    for (;; reach *= 0.1) {
+      chosen.clear();
+      for (int i = 0; i < prog.num_element_cones(); ++i) {
+        const double top = i < num_free_cones ? k : prog.head_b[i];
+        if (d[i] >= top - reach || s.z[prog.cone_offset(i)] >= 1e-3 * zmax) chosen.push_back(elems[i]);
+      }
+      for (const auto& [e, de] : constant_distortions)
+        if (de >= k - reach) chosen.push_back(e);
+      if (chosen.size() <= cap || reach < 1e-3 * tol) break;
+    }
+    ++ms.active_set_attempts;
+    ms.active_set_iteration = info.iteration;
+    const ActiveSetBound b = active_set_bound(p, chosen, p.with_free_dofs(s.x), effective_bounds, options);
+    if (options.verbose)
+      std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
+                   b.iterations);
+    ms.active_set_bound = b.lower_bound;
+    if (b.lower_bound > ms.lower_bound) {
+      ms.lower_bound = b.lower_bound;
+      ms.element_multipliers = b.multipliers;
     }
   };
   analysis.wait();
@@ -359,7 +416,10 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const double near = 1e4 * options.gap_tolerance * scale;
     const bool certify = options.progress || info.iteration == 0 || !std::isfinite(ms.k) ||
                          ms.k - info.dobj <= near || info.gap <= near || info.kkt_residual > 1e-3;
-    if (certify) certify_iterate(s);
+    if (certify) {
+      certify_iterate(s);
+      try_active_set(s, d, k, info);
+    }
     ms.last_certified = certify;
     IterationRecord rec;
     rec.iteration = info.iteration;
@@ -398,7 +458,9 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   total_iterations += ms.outcome.iterations;
   result.iterations = total_iterations;
   result.lower_bound = std::min(ms.lower_bound, ms.k);
-  if (ms.multipliers.size() > 0) {
+  if (ms.element_multipliers.size() == E) {
+    result.multipliers = ms.element_multipliers;
+  } else if (ms.multipliers.size() > 0) {
     result.multipliers = Eigen::VectorXd::Zero(E);
     for (size_t i = 0; i < elems.size(); ++i) result.multipliers[elems[i]] = ms.multipliers[static_cast<Eigen::Index>(i)];
   }

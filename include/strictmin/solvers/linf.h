@@ -49,6 +49,11 @@ struct LinfOptions {
   // systems of badly graded meshes exceed double precision), a certified relative gap below
   // acceptable_gap_tolerance still counts as solved, with a "reduced accuracy" message.
   double acceptable_gap_tolerance = 1e-6;
+  // Near the optimum, certify with the problem restricted to the elements within reach of the
+  // maximum (a relaxation, so its certified bound holds for the whole problem; see
+  // src/solvers/linf_active_set.h). It certifies several iterations before the iterates'
+  // own dual does.
+  bool active_set_bounds = true;
   // Interior-point internals (see solvers/socp/settings.h).
   double step_fraction = 0.95;
   double regularization = 1e-15;

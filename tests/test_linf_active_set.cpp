@@ -1,0 +1,193 @@
+// The active-set bound (solvers/linf_active_set.h): the L-infinity problem restricted to some
+// elements is a relaxation, so its certified bound never exceeds the optimum; restricted to the
+// elements near the maximum it certifies the optimum; solve_linf uses it to stop sooner.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+#include <random>
+
+#include "strictmin/mesh/generators.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/linf_active_set.h"
+#include "test_meshes.h"
+
+using namespace strictmin;
+
+namespace {
+
+// The whole problem solved without the active-set bound: its k (an upper bound on the
+// optimum k*) and its certified lower bound (to 1e-10).
+struct Reference {
+  Result r;
+  double k = 0;
+};
+
+Reference reference(const Problem& p) {
+  LinfOptions o;
+  o.active_set_bounds = false;
+  o.gap_tolerance = 1e-10;
+  Reference ref;
+  ref.r = solve_linf(p, o);
+  EXPECT_TRUE(ref.r.ok()) << ref.r.message;
+  ref.k = ref.r.distortion.maxCoeff();
+  EXPECT_LE(ref.k - ref.r.lower_bound, 1e-9);
+  return ref;
+}
+
+std::vector<int> all_elements(const Problem& p) {
+  std::vector<int> e(p.num_elements());
+  std::iota(e.begin(), e.end(), 0);
+  return e;
+}
+
+// Figure 2 of the paper: unit square, boundary fixed, centre moved sideways by `shift`.
+Problem figure2(int cells, double shift) {
+  const Mesh mesh = make_grid(cells, cells);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> h;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int i = v % (cells + 1), j = v / (cells + 1);
+    if (i == 0 || j == 0 || i == cells || j == cells) h.push_back({v, mesh.V.row(v).transpose()});
+  }
+  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  h.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + shift, mesh.V(centre, 1))});
+  p.fix(h);
+  return p;
+}
+
+}  // namespace
+
+TEST(ActiveSet, WholeProblemGivesTheOptimum) {
+  const Problem p = test_support::random_target_bar();
+  const Reference ref = reference(p);
+  const ActiveSetBound b = active_set_bound(p, all_elements(p), ref.r.positions, {}, LinfOptions{});
+  EXPECT_EQ(b.elements, p.num_elements());
+  EXPECT_LE(b.lower_bound, ref.k + 1e-12);
+  EXPECT_GE(b.lower_bound, ref.r.lower_bound - 2e-9);
+}
+
+// Any restriction is a relaxation: its bound is at most the optimum, whichever elements it
+// keeps (parts that touch no fixed vertex included).
+TEST(ActiveSet, RestrictionsNeverExceedTheOptimum) {
+  const Problem p = test_support::random_target_bar();
+  const Reference ref = reference(p);
+  std::mt19937 rng(11);
+  for (double share : {0.1, 0.3, 0.6, 0.9}) {
+    std::vector<int> chosen;
+    std::bernoulli_distribution keep(share);
+    for (int e = 0; e < p.num_elements(); ++e)
+      if (keep(rng)) chosen.push_back(e);
+    const ActiveSetBound b = active_set_bound(p, chosen, ref.r.positions, {}, LinfOptions{});
+    EXPECT_LE(b.lower_bound, ref.k + 1e-12) << "share " << share;
+    EXPECT_GE(b.lower_bound, 0.0) << "share " << share;
+  }
+}
+
+// A part that no fixed vertex anchors has one vertex held: distortion is invariant under
+// translation, so holding another vertex of the part instead gives the same optimum.
+TEST(ActiveSet, UnanchoredPartsKeepTheirOptimum) {
+  const Problem p = test_support::random_target_bar();
+  const Reference ref = reference(p);
+  // The elements whose vertices are all free: one part in the bar's interior.
+  std::vector<int> inner;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    bool free = true;
+    for (int j = 0; j < p.corners(); ++j) free = free && !p.fixed[p.elements(e, j)];
+    if (free) inner.push_back(e);
+  }
+  ASSERT_GT(inner.size(), 20u);
+  const ActiveSetBound b = active_set_bound(p, inner, ref.r.positions, {}, LinfOptions{});
+  // The same part as a problem of its own, held at its last vertex instead of its first.
+  Problem q = p;
+  q.elements.resize(static_cast<Eigen::Index>(inner.size()), p.corners());
+  q.gradients.resize(static_cast<Eigen::Index>(inner.size()) * p.corners(), p.domain_dim);
+  q.weights.resize(static_cast<Eigen::Index>(inner.size()));
+  q.targets.resize(static_cast<Eigen::Index>(inner.size()) * p.image_dim, p.domain_dim);
+  std::vector<char> used(p.num_vertices, 0);
+  for (size_t j = 0; j < inner.size(); ++j) {
+    const int e = inner[j];
+    q.elements.row(j) = p.elements.row(e);
+    q.gradients.middleRows(j * p.corners(), p.corners()) = p.gradients.middleRows(e * p.corners(), p.corners());
+    q.weights[j] = p.weights[e];
+    q.targets.middleRows(j * p.image_dim, p.image_dim) = p.targets.middleRows(e * p.image_dim, p.image_dim);
+    for (int c = 0; c < p.corners(); ++c) used[p.elements(e, c)] = 1;
+  }
+  int last = -1;
+  for (int v = 0; v < p.num_vertices; ++v) {
+    q.fixed[v] = !used[v];
+    if (used[v]) last = v;
+  }
+  q.fixed[last] = 1;
+  q.positions = ref.r.positions;
+  LinfOptions o;
+  o.active_set_bounds = false;
+  o.gap_tolerance = 1e-10;
+  const Result own = solve_linf(q, o);
+  ASSERT_TRUE(own.ok()) << own.message;
+  EXPECT_GT(own.lower_bound, 0.05);  // the random targets are incompatible: not a trivial part
+  EXPECT_NEAR(b.lower_bound, own.lower_bound, 2e-9);
+  EXPECT_LE(b.lower_bound, ref.k + 1e-12);
+}
+
+// Restricted to the elements near the maximum of an optimal map, the bound is the optimum;
+// the multipliers are the restriction's (zero elsewhere, nonnegative).
+TEST(ActiveSet, ElementsNearTheMaximumCertifyTheOptimum) {
+  for (const Problem& p : {test_support::random_target_bar(), figure2(16, 0.2)}) {
+    const Reference ref = reference(p);
+    std::vector<int> near;
+    for (int e = 0; e < p.num_elements(); ++e)
+      if (ref.r.distortion[e] >= ref.k - 1e-3) near.push_back(e);
+    ASSERT_LT(near.size(), static_cast<size_t>(p.num_elements()));
+    const ActiveSetBound b = active_set_bound(p, near, ref.r.positions, {}, LinfOptions{});
+    EXPECT_LE(b.lower_bound, ref.k + 1e-12);
+    EXPECT_GE(b.lower_bound, ref.r.lower_bound - 2e-9);
+    ASSERT_EQ(b.multipliers.size(), p.num_elements());
+    EXPECT_GE(b.multipliers.minCoeff(), 0.0);
+    double outside = 0;
+    std::vector<char> in(p.num_elements(), 0);
+    for (int e : near) in[e] = 1;
+    for (int e = 0; e < p.num_elements(); ++e)
+      if (!in[e]) outside = std::max(outside, b.multipliers[e]);
+    EXPECT_EQ(outside, 0.0);
+    std::printf("%d of %d elements near the maximum: bound %.12f, optimum in [%.12f, %.12f]\n",
+                static_cast<int>(near.size()), p.num_elements(), b.lower_bound, ref.r.lower_bound, ref.k);
+  }
+}
+
+// Equalities among the restriction's vertices are kept (the centre held by two rows acts as
+// a handle: without them the bound would fall to the optimum with a free centre).
+TEST(ActiveSet, EqualitiesOfTheRestrictionAreKept) {
+  const int cells = 10;
+  const Problem with_handle = figure2(cells, 0.2);
+  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  Problem with_eq = with_handle;
+  with_eq.fixed[centre] = 0;
+  with_eq.eq_matrix.resize(2, 2 * with_eq.num_vertices);
+  std::vector<Eigen::Triplet<double>> t = {{0, 2 * centre, 1.0}, {1, 2 * centre + 1, 1.0}};
+  with_eq.eq_matrix.setFromTriplets(t.begin(), t.end());
+  with_eq.eq_rhs = with_handle.positions.row(centre).transpose();
+  const Reference ref = reference(with_handle);
+  const ActiveSetBound b = active_set_bound(with_eq, all_elements(with_eq), ref.r.positions, {}, LinfOptions{});
+  EXPECT_NEAR(b.lower_bound, ref.k, 1e-7);
+  EXPECT_GT(ref.k, 0.1);
+}
+
+// solve_linf with the active-set bound: the same optimum, certified, in fewer iterations.
+TEST(ActiveSet, SolveLinfCertifiesSooner) {
+  const Problem p = figure2(40, 0.2);
+  LinfOptions with, without;
+  without.active_set_bounds = false;
+  const Result a = solve_linf(p, with), b = solve_linf(p, without);
+  ASSERT_EQ(a.status, SolveStatus::Solved) << a.message;
+  ASSERT_EQ(b.status, SolveStatus::Solved) << b.message;
+  const double ka = a.distortion.maxCoeff(), kb = b.distortion.maxCoeff();
+  EXPECT_LE(ka - a.lower_bound, 1e-8);
+  EXPECT_LE(a.lower_bound, kb + 1e-12);  // a bound on the optimum: below any map's k
+  EXPECT_LE(b.lower_bound, ka + 1e-12);
+  EXPECT_NEAR(ka, kb, 2e-8);
+  EXPECT_LT(a.iterations, b.iterations);
+  std::printf("figure 2 (40x40): %d iterations with the active-set bound, %d without\n", a.iterations, b.iterations);
+}
