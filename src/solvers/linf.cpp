@@ -346,11 +346,10 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.element_multipliers.resize(0);
     }
   };
-  // The restricted problem's bound (linf_active_set.h), tried once the method is within 1e3
-  // times the tolerance, at most three times, not in consecutive iterations. The restriction:
-  // the elements within reach of the maximum (bounded ones: of their bound), reach being ten
-  // times the certified gap (at least 1e3 times the tolerance), cut tenfold until at most
-  // max(1000, 5%) of the elements remain.
+  // The restricted problem's bound (linf_active_set.h), for tight tolerances, once the method
+  // is within 1e3 times the tolerance; at most three tries. The restriction: the elements within reach of the
+  // maximum (bounded ones: of their bound), reach being 1e3 times the certified gap (ten times
+  // more on each retry), cut tenfold until at most max(1000, 5%) of the elements remain.
   std::vector<std::pair<int, double>> constant_distortions;  // constant free elements
   for (int e : cls.constant_elements)
     if (!socp::has_bound(bounds, e))
@@ -361,7 +360,10 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   auto try_active_set = [&](const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
     const double scale = std::max(1.0, std::abs(ms.k));
     const double tol = options.gap_tolerance * scale;
-    if (!options.active_set_bounds || !std::isfinite(ms.k) || ms.k - ms.lower_bound <= tol) return;
+    // Not for loose tolerances (the strict minimizers' later levels): the iterates' own
+    // certificate reaches them about as soon, and a restriction tried early costs more.
+    if (!options.active_set_bounds || options.gap_tolerance > 1e-6) return;
+    if (!std::isfinite(ms.k) || ms.k - ms.lower_bound <= tol) return;
     if (!(ms.k - info.dobj <= 1e3 * tol || info.gap <= 1e3 * tol)) return;
     if (ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) return;
     // A restriction tried before that misses part of the dual's support gives a bound below
@@ -372,14 +374,12 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       return;
     const size_t cap = std::max<size_t>(1000, E / 20);
     double reach = 1e3 * std::max(ms.k - ms.lower_bound, tol) * std::pow(10.0, ms.active_set_attempts);
-    double zmax = 0;
-    for (int i = 0; i < prog.num_element_cones(); ++i) zmax = std::max(zmax, s.z[prog.cone_offset(i)]);
     std::vector<int> chosen;
     for (;; reach *= 0.1) {
       chosen.clear();
       for (int i = 0; i < prog.num_element_cones(); ++i) {
         const double top = i < num_free_cones ? k : prog.head_b[i];
-        if (d[i] >= top - reach || s.z[prog.cone_offset(i)] >= 1e-3 * zmax) chosen.push_back(elems[i]);
+        if (d[i] >= top - reach) chosen.push_back(elems[i]);
       }
       for (const auto& [e, de] : constant_distortions)
         if (de >= k - reach) chosen.push_back(e);

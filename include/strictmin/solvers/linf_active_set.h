@@ -2,8 +2,8 @@
 // A certified lower bound on the L-infinity optimum from the elements near the maximum.
 //
 // Near the optimum, only the elements whose distortion is within reach of the maximum can
-// carry dual weight (complementary slackness), and there are few of them: a few hundred on
-// the 100k-triangle square of the paper's Figure 2, a few dozen on bimba_89k. The problem
+// carry dual weight (complementary slackness), and there are few of them: about a thousand
+// on the 100k-triangle square of the paper's Figure 2, about fifty on bimba_89k. The problem
 // restricted to them (every other element dropped, the vertices they do not touch held, the
 // equalities that involve such a vertex dropped, one vertex held per part of them that no
 // fixed vertex anchors: distortion does not change under translation) is a relaxation of
