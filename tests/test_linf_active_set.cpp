@@ -1,14 +1,17 @@
-// The active-set bound (solvers/linf_active_set.h): the L-infinity problem restricted to some
+// The active-set solves (solvers/linf_active_set.h): the L-infinity problem restricted to some
 // elements is a relaxation, so its certified bound never exceeds the optimum; restricted to the
-// elements near the maximum it certifies the optimum; solve_linf uses it to stop sooner.
+// elements near the maximum it certifies the optimum; with the rim held it gives a map of the
+// whole problem that moves nothing outside; solve_linf uses both to stop sooner.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <random>
 
+#include "strictmin/solvers/l2.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/linf_active_set.h"
@@ -63,7 +66,7 @@ Problem figure2(int cells, double shift) {
 TEST(ActiveSet, WholeProblemGivesTheOptimum) {
   const Problem p = test_support::random_target_bar();
   const Reference ref = reference(p);
-  const ActiveSetBound b = active_set_bound(p, all_elements(p), ref.r.positions, {}, LinfOptions{});
+  const ActiveSetSolve b = active_set_bound(p, all_elements(p), ref.r.positions, {}, LinfOptions{});
   EXPECT_EQ(b.elements, p.num_elements());
   EXPECT_LE(b.lower_bound, ref.k + 1e-12);
   EXPECT_GE(b.lower_bound, ref.r.lower_bound - 2e-9);
@@ -80,7 +83,7 @@ TEST(ActiveSet, RestrictionsNeverExceedTheOptimum) {
     std::bernoulli_distribution keep(share);
     for (int e = 0; e < p.num_elements(); ++e)
       if (keep(rng)) chosen.push_back(e);
-    const ActiveSetBound b = active_set_bound(p, chosen, ref.r.positions, {}, LinfOptions{});
+    const ActiveSetSolve b = active_set_bound(p, chosen, ref.r.positions, {}, LinfOptions{});
     EXPECT_LE(b.lower_bound, ref.k + 1e-12) << "share " << share;
     EXPECT_GE(b.lower_bound, 0.0) << "share " << share;
   }
@@ -99,7 +102,7 @@ TEST(ActiveSet, UnanchoredPartsKeepTheirOptimum) {
     if (free) inner.push_back(e);
   }
   ASSERT_GT(inner.size(), 20u);
-  const ActiveSetBound b = active_set_bound(p, inner, ref.r.positions, {}, LinfOptions{});
+  const ActiveSetSolve b = active_set_bound(p, inner, ref.r.positions, {}, LinfOptions{});
   // The same part as a problem of its own, held at its last vertex instead of its first.
   Problem q = p;
   q.elements.resize(static_cast<Eigen::Index>(inner.size()), p.corners());
@@ -141,7 +144,7 @@ TEST(ActiveSet, ElementsNearTheMaximumCertifyTheOptimum) {
     for (int e = 0; e < p.num_elements(); ++e)
       if (ref.r.distortion[e] >= ref.k - 1e-3) near.push_back(e);
     ASSERT_LT(near.size(), static_cast<size_t>(p.num_elements()));
-    const ActiveSetBound b = active_set_bound(p, near, ref.r.positions, {}, LinfOptions{});
+    const ActiveSetSolve b = active_set_bound(p, near, ref.r.positions, {}, LinfOptions{});
     EXPECT_LE(b.lower_bound, ref.k + 1e-12);
     EXPECT_GE(b.lower_bound, ref.r.lower_bound - 2e-9);
     ASSERT_EQ(b.multipliers.size(), p.num_elements());
@@ -170,7 +173,7 @@ TEST(ActiveSet, EqualitiesOfTheRestrictionAreKept) {
   with_eq.eq_matrix.setFromTriplets(t.begin(), t.end());
   with_eq.eq_rhs = with_handle.positions.row(centre).transpose();
   const Reference ref = reference(with_handle);
-  const ActiveSetBound b = active_set_bound(with_eq, all_elements(with_eq), ref.r.positions, {}, LinfOptions{});
+  const ActiveSetSolve b = active_set_bound(with_eq, all_elements(with_eq), ref.r.positions, {}, LinfOptions{});
   EXPECT_NEAR(b.lower_bound, ref.k, 1e-7);
   EXPECT_GT(ref.k, 0.1);
 }
@@ -190,4 +193,61 @@ TEST(ActiveSet, SolveLinfCertifiesSooner) {
   EXPECT_NEAR(ka, kb, 2e-8);
   EXPECT_LT(a.iterations, b.iterations);
   std::printf("figure 2 (40x40): %d iterations with the active-set bound, %d without\n", a.iterations, b.iterations);
+}
+
+// The map: the restriction with the rim held moves only vertices that no other element
+// touches, so every other element keeps its distortion exactly, the restricted elements' maximum
+// does not rise, and the handles and equalities still hold.
+TEST(ActiveSet, MapMovesOnlyTheRestrictionsInterior) {
+  const Problem p = figure2(16, 0.2);
+  // A map that is not optimal: a few iterations short.
+  LinfOptions early;
+  early.max_iterations = 6;
+  early.active_set_bounds = false;
+  const Result start = solve_linf(p, early);
+  ASSERT_TRUE(start.positions.allFinite());
+  const double k = start.distortion.maxCoeff();
+  std::vector<int> near;
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (start.distortion[e] >= k - 0.05) near.push_back(e);
+  const std::vector<int> chosen = widen_by_rings(p, near, 2, 3.0);
+  ASSERT_GT(chosen.size(), near.size());
+  ASSERT_LE(chosen.size(), 3 * near.size());
+  const ActiveSetSolve m = active_set_map(p, chosen, start.positions, {}, LinfOptions{});
+  ASSERT_EQ(m.positions.rows(), p.num_vertices);
+  EXPECT_EQ(m.lower_bound, -std::numeric_limits<double>::infinity());  // a restriction bounds nothing
+  std::vector<char> in(p.num_elements(), 0);
+  for (int e : chosen) in[e] = 1;
+  const Eigen::VectorXd after = field_deviation(p, m.positions);
+  double inside_before = 0, inside_after = 0;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    if (in[e]) {
+      inside_before = std::max(inside_before, start.distortion[e]);
+      inside_after = std::max(inside_after, after[e]);
+    } else {
+      EXPECT_EQ(after[e], start.distortion[e]) << "element " << e << " outside the restriction";
+    }
+  }
+  EXPECT_LE(inside_after, inside_before + 1e-12);
+  EXPECT_LT(after.maxCoeff(), k - 1e-6);  // it does improve this map
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (p.fixed[v]) {
+      EXPECT_EQ((m.positions.row(v) - p.positions.row(v)).norm(), 0.0);
+    }
+}
+
+TEST(ActiveSet, WideningAddsRingsWithinTheGrowthLimit) {
+  const Problem p = figure2(10, 0.2);
+  const std::vector<int> one = {0};
+  EXPECT_EQ(widen_by_rings(p, one, 0, 10.0), one);
+  const std::vector<int> ring1 = widen_by_rings(p, one, 1, 100.0);
+  // Every element sharing a vertex with element 0, and no other.
+  for (int e = 0; e < p.num_elements(); ++e) {
+    bool shares = false;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) shares = shares || p.elements(e, a) == p.elements(0, b);
+    EXPECT_EQ(std::count(ring1.begin(), ring1.end(), e), shares ? 1 : 0) << e;
+  }
+  const std::vector<int> limited = widen_by_rings(p, one, 5, 1.5);
+  EXPECT_EQ(limited, one);  // the first ring already more than 1.5 times as many
 }
