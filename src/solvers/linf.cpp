@@ -165,6 +165,8 @@ struct MainSolve {
   Eigen::VectorXd element_multipliers;  // or per element, when it came from an active-set bound
   int active_set_attempts = 0, active_set_iteration = -1;
   double active_set_bound = -kInf;  // of the last restriction tried
+  double iterate_bound = -kInf;     // the best of the iterates' own certificates
+  int active_set_maps = 0;
   bool stalled = false;
   bool last_certified = true;  // the monitor formed the certificate of the last iterate
 };
@@ -340,17 +342,18 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   auto certify_iterate = [&](const socp::IpmState& s) {
     Eigen::VectorXd lambda;
     const double lb = socp::certified_lower_bound(prog, ls, s.z, s.y, &lambda);
+    ms.iterate_bound = std::max(ms.iterate_bound, lb);
     if (lb > ms.lower_bound) {
       ms.lower_bound = lb;
       ms.multipliers = std::move(lambda);
       ms.element_multipliers.resize(0);
     }
   };
-  // The restricted problem's bound (linf_active_set.h), for tight tolerances, once the method
-  // is within 1e3 times the tolerance; at most three tries. The restriction: the elements within reach of the
-  // maximum (bounded ones: of their bound), reach being 1e3 times the certified gap (ten times
-  // more on each retry), cut tenfold until at most max(1000, 5%) of the elements remain; with
-  // the restriction of the same elements widened (linf_active_set.h: the map).
+  // The active-set solves (linf_active_set.h), for tight tolerances, once the method is
+  // within 1e3 times the tolerance: the bound from the elements within reach of the maximum
+  // (reach 1e3 times the iterates' certified gap, ten times more on each retry; at most three
+  // tries), and the map from the same elements widened, tried again at later iterates while
+  // k stays above the bound (at most four maps).
   std::vector<std::pair<int, double>> constant_distortions;  // constant free elements
   for (int e : cls.constant_elements)
     if (!socp::has_bound(bounds, e))
@@ -358,23 +361,10 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   Eigen::VectorXd effective_bounds = bounds;
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += relax;
-  auto try_active_set = [&](const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
-    const double scale = std::max(1.0, std::abs(ms.k));
-    const double tol = options.gap_tolerance * scale;
-    // Not for loose tolerances (the strict minimizers' later levels): the iterates' own
-    // certificate reaches them about as soon, and a restriction tried early costs more.
-    if (!options.active_set_bounds || options.gap_tolerance > 1e-6) return;
-    if (!std::isfinite(ms.k) || ms.k - ms.lower_bound <= tol) return;
-    if (!(ms.k - info.dobj <= 1e3 * tol || info.gap <= 1e3 * tol)) return;
-    if (ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) return;
-    // A restriction tried before that misses part of the dual's support gives a bound below
-    // the optimum: retried (with a wider reach) only once the iterates' own dual objective
-    // passes that bound, or their gap falls well below the gap left to it.
-    if (ms.active_set_attempts > 0 && !(info.dobj > ms.active_set_bound + tol) &&
-        !(info.gap < 0.1 * (ms.k - ms.active_set_bound)))
-      return;
+  // The elements within reach of the maximum (bounded ones: of their bound), the reach cut
+  // tenfold until at most max(1000, 5%) of the elements remain.
+  auto near_maximum = [&](const Eigen::VectorXd& d, double k, double reach, double tol) {
     const size_t cap = std::max<size_t>(1000, E / 20);
-    double reach = 1e3 * std::max(ms.k - ms.lower_bound, tol) * std::pow(10.0, ms.active_set_attempts);
     std::vector<int> chosen;
     for (;; reach *= 0.1) {
       chosen.clear();
@@ -384,36 +374,62 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       }
       for (const auto& [e, de] : constant_distortions)
         if (de >= k - reach) chosen.push_back(e);
-      if (chosen.size() <= cap || reach < 1e-3 * tol) break;
+      if (chosen.size() <= cap || reach < 1e-3 * tol) return chosen;
     }
+  };
+  // The map: the elements and up to two rings around them (while at most three times as
+  // many), the rest held; kept if it lowers k (checked on the whole problem).
+  auto try_map = [&](const std::vector<int>& chosen, const Eigen::MatrixXd& X) {
+    ++ms.active_set_maps;
+    const ActiveSetSolve m = active_set_map(p, widen_by_rings(p, chosen, 2, 3.0), X, effective_bounds, options);
+    if (options.verbose)
+      std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations)\n", m.elements, m.iterations);
+    if (m.positions.size() == 0 || !m.positions.allFinite()) return;
+    const Eigen::VectorXd x2 = p.free_dofs(m.positions);
+    const Eigen::VectorXd d2 = socp::cone_distortions(prog, x2);
+    double k2 = has_kmin ? cls.constant_max : -kInf;
+    for (int i = 0; i < num_free_cones; ++i) k2 = std::max(k2, d2[i]);
+    if (k2 < ms.k && bound_ok(d2) && equalities_ok(x2)) {
+      ms.k = k2;
+      ms.x = x2;
+    }
+  };
+  auto try_active_set = [&](const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
+    const double scale = std::max(1.0, std::abs(ms.k));
+    const double tol = options.gap_tolerance * scale;
+    // Not for loose tolerances (the strict minimizers' later levels): the iterates' own
+    // certificate reaches them about as soon, and a restriction tried early costs more.
+    if (!options.active_set_bounds || options.gap_tolerance > 1e-6) return;
+    if (!std::isfinite(ms.k) || ms.k - ms.lower_bound <= tol) return;
+    if (!(ms.k - info.dobj <= 1e3 * tol || info.gap <= 1e3 * tol)) return;
+    const Eigen::MatrixXd X = p.with_free_dofs(s.x);
+    // A restriction tried before that misses part of the dual's support gives a bound below
+    // the optimum: retried (with a wider reach) only once the iterates' own dual objective
+    // passes that bound, or their gap falls well below the gap left to it. Otherwise, with
+    // the bound in place and k still above it, only the map is tried again.
+    const bool retry = ms.active_set_attempts == 0 || info.dobj > ms.active_set_bound + tol ||
+                       info.gap < 0.1 * (ms.k - ms.active_set_bound);
+    if (!retry || ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) {
+      if (ms.active_set_attempts > 0 && ms.active_set_maps < 4 && info.iteration != ms.active_set_iteration)
+        try_map(near_maximum(d, k, 1e3 * std::max(ms.k - ms.iterate_bound, tol), tol), X);
+      return;
+    }
+    const double reach = 1e3 * std::max(ms.k - ms.iterate_bound, tol) * std::pow(10.0, ms.active_set_attempts);
+    const std::vector<int> chosen = near_maximum(d, k, reach, tol);
     ++ms.active_set_attempts;
     ms.active_set_iteration = info.iteration;
-    const Eigen::MatrixXd X = p.with_free_dofs(s.x);
     const ActiveSetSolve b = active_set_bound(p, chosen, X, effective_bounds, options);
     if (options.verbose)
       std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
                    b.iterations);
     ms.active_set_bound = b.lower_bound;
-    // The map: the same elements and up to two rings around them (while at most three times
-    // as many), the rest held; kept if it lowers k (checked on the whole problem).
-    const ActiveSetSolve polish = active_set_map(p, widen_by_rings(p, chosen, 2, 3.0), X, effective_bounds, options);
-    if (options.verbose)
-      std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations)\n", polish.elements, polish.iterations);
-    if (polish.positions.size() > 0 && polish.positions.allFinite()) {
-      const Eigen::VectorXd x2 = p.free_dofs(polish.positions);
-      const Eigen::VectorXd d2 = socp::cone_distortions(prog, x2);
-      double k2 = has_kmin ? cls.constant_max : -kInf;
-      for (int i = 0; i < num_free_cones; ++i) k2 = std::max(k2, d2[i]);
-      if (k2 < ms.k && bound_ok(d2) && equalities_ok(x2)) {
-        ms.k = k2;
-        ms.x = x2;
-      }
-    }
     if (b.lower_bound > ms.lower_bound) {
       ms.lower_bound = b.lower_bound;
       ms.element_multipliers = b.multipliers;
     }
+    if (ms.k - ms.lower_bound > tol) try_map(chosen, X);
   };
+
   analysis.wait();
   ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals& r,
                                                      const socp::IpmIteration& info) {
