@@ -25,6 +25,7 @@
 #include "strictmin/solvers/socp/split_cholesky.h"
 #include "strictmin/solvers/socp/supernodal_factor.h"
 #include "strictmin/solvers/socp/supernodal_solve.h"
+#include "test_meshes.h"
 
 using namespace strictmin;
 
@@ -436,28 +437,14 @@ TEST(Linf, CamelheadSurfaceWithThreeFixedVertices) {
   const std::string path = std::string(STRICTMIN_SHARED_DATA) + "/disk/camelhead.obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
   const Mesh mesh = read_mesh(path);
-  Problem p = make_problem(mesh);  // per-triangle 2D frames, identity targets
-  // Three boundary vertices, placed where an L2 map with one pinned vertex puts them.
-  std::map<std::pair<int, int>, int> edges;
-  for (int f = 0; f < mesh.num_elements(); ++f)
-    for (int j = 0; j < 3; ++j) {
-      int a = mesh.F(f, j), c = mesh.F(f, (j + 1) % 3);
-      ++edges[{std::min(a, c), std::max(a, c)}];
-    }
-  std::vector<int> boundary;
-  for (const auto& [e, count] : edges)
-    if (count == 1) boundary.push_back(e.first);
-  std::sort(boundary.begin(), boundary.end());
-  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
-  ASSERT_GE(boundary.size(), 3u);
-  Problem pinned = p;
-  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
+  // Per-triangle 2D frames, identity targets; three boundary vertices held where an L2 map
+  // with one pinned vertex puts them.
+  const Problem p = test_support::disk_with_three_pins(mesh);
+  ASSERT_EQ(p.num_free(), mesh.num_vertices() - 3);
+  Problem pinned = make_problem(mesh);
+  pinned.fix({{0, Eigen::Vector2d::Zero()}});
   const Result l2 = solve_l2(pinned);
   ASSERT_TRUE(l2.ok()) << l2.message;
-  std::vector<Handle> handles;
-  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
-    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
-  p.fix(handles);
   const Result r = solve_linf(p);
   ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
   ASSERT_TRUE(r.positions.allFinite());

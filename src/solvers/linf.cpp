@@ -167,6 +167,8 @@ struct MainSolve {
   double active_set_bound = -kInf;  // of the last restriction tried
   double iterate_bound = -kInf;     // the best of the iterates' own certificates
   int active_set_maps = 0;
+  size_t active_set_elements = 0;  // in the last restriction tried
+  bool active_set_close = false;   // its bound within 1e2 tolerances of k
   bool stalled = false;
   bool last_certified = true;  // the monitor formed the certificate of the last iterate
 };
@@ -410,7 +412,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const bool retry = ms.active_set_attempts == 0 || info.dobj > ms.active_set_bound + tol ||
                        info.gap < 0.1 * (ms.k - ms.active_set_bound);
     if (!retry || ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) {
-      if (ms.active_set_attempts > 0 && ms.active_set_maps < 4 && info.iteration != ms.active_set_iteration)
+      if (ms.active_set_close && ms.active_set_maps < 2 && info.iteration != ms.active_set_iteration)
         try_map(near_maximum(d, k, 1e3 * std::max(ms.k - ms.iterate_bound, tol), tol), X);
       return;
     }
@@ -418,6 +420,12 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const std::vector<int> chosen = near_maximum(d, k, reach, tol);
     ++ms.active_set_attempts;
     ms.active_set_iteration = info.iteration;
+    // A retry that the size cap keeps to about the same elements cannot do better: the last.
+    if (chosen.size() < 1.2 * ms.active_set_elements) {
+      ms.active_set_attempts = 3;
+      return;
+    }
+    ms.active_set_elements = chosen.size();
     const ActiveSetSolve b = active_set_bound(p, chosen, X, effective_bounds, options);
     if (options.verbose)
       std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
@@ -427,7 +435,9 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.lower_bound = b.lower_bound;
       ms.element_multipliers = b.multipliers;
     }
-    if (ms.k - ms.lower_bound > tol) try_map(chosen, X);
+    // The map only helps to finish when the bound is about there (it missed no support).
+    ms.active_set_close = ms.k - b.lower_bound <= 1e2 * tol;
+    if (ms.active_set_close && ms.k - ms.lower_bound > tol) try_map(chosen, X);
   };
 
   analysis.wait();
