@@ -4,12 +4,14 @@
 
 namespace strictmin {
 
-Subproblem restrict_to_movable(const Problem& p, const std::vector<char>& movable, const Eigen::MatrixXd& X) {
+Subproblem restrict_to_movable(const Problem& p, const std::vector<char>& movable, const Eigen::MatrixXd& X,
+                               const std::vector<char>* elements) {
   const int V = p.num_vertices, E = p.num_elements(), c = p.corners(), n = p.image_dim;
   auto moves = [&](int v) { return movable[v] && !p.fixed[v]; };
   Subproblem out;
   std::vector<int> local(V, -1);
   for (int e = 0; e < E; ++e) {
+    if (elements && !(*elements)[e]) continue;
     bool keep = false;
     for (int j = 0; j < c && !keep; ++j) keep = moves(p.elements(e, j));
     if (!keep) continue;

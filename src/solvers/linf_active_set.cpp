@@ -1,7 +1,10 @@
 #include "strictmin/solvers/linf_active_set.h"
 
+#include <algorithm>
 #include <limits>
 #include <numeric>
+
+#include "strictmin/problem/subproblem.h"
 
 namespace strictmin {
 namespace {
@@ -11,68 +14,39 @@ int find_root(std::vector<int>& parent, int v) {
   return v;
 }
 
-// The problem over `elements` only (see the header): which vertices are held, which
-// equalities are kept.
-Problem restricted_problem(const Problem& p, const std::vector<int>& elements, const Eigen::MatrixXd& X,
-                           bool hold_rim) {
-  const int V = p.num_vertices, c = p.corners(), n = p.image_dim, E = static_cast<int>(elements.size());
-  Problem r;
-  r.image_dim = n;
-  r.domain_dim = p.domain_dim;
-  r.num_vertices = V;
-  r.elements.resize(E, c);
-  r.gradients.resize(static_cast<Eigen::Index>(E) * c, p.domain_dim);
-  r.weights.resize(E);
-  r.targets.resize(static_cast<Eigen::Index>(E) * n, p.domain_dim);
-  for (int j = 0; j < E; ++j) {
-    const int e = elements[j];
-    r.elements.row(j) = p.elements.row(e);
-    r.gradients.middleRows(static_cast<Eigen::Index>(j) * c, c) = p.gradients.middleRows(static_cast<Eigen::Index>(e) * c, c);
-    r.weights[j] = p.weights[e];
-    r.targets.middleRows(static_cast<Eigen::Index>(j) * n, n) = p.targets.middleRows(static_cast<Eigen::Index>(e) * n, n);
-  }
-  r.positions = X;
-
+// The problem over `elements` only (see the header), in the numbering of its movable
+// vertices (restrict_to_movable): `elements` with their vertices, the rest held at X; in a
+// relaxation (not hold_rim) the equalities through a vertex outside are dropped, and one
+// vertex is held per part that no fixed vertex anchors; with hold_rim every vertex that
+// another element touches is held and every equality kept.
+Subproblem restricted_problem(const Problem& p, const std::vector<int>& elements, const Eigen::MatrixXd& X,
+                              bool hold_rim) {
+  const int V = p.num_vertices, c = p.corners(), n = p.image_dim;
+  std::vector<char> chosen(p.num_elements(), 0), touched(V, 0), rim(V, 0);
+  for (int e : elements) chosen[e] = 1;
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int a = 0; a < c; ++a) (chosen[e] ? touched : rim)[p.elements(e, a)] = 1;
+  if (!hold_rim) std::fill(rim.begin(), rim.end(), 0);
   // Parts of the restriction (vertices joined through its elements) and their anchors.
   std::vector<int> parent(V);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<char> touched(V, 0);
-  for (int j = 0; j < E; ++j)
-    for (int a = 0; a < c; ++a) {
-      touched[r.elements(j, a)] = 1;
-      parent[find_root(parent, r.elements(j, a))] = find_root(parent, r.elements(j, 0));
-    }
-  // The rim: vertices that other elements touch too (held in a restriction of the problem).
-  std::vector<char> rim(V, 0);
-  if (hold_rim) {
-    std::vector<char> chosen(p.num_elements(), 0);
-    for (int e : elements) chosen[e] = 1;
-    for (int e = 0; e < p.num_elements(); ++e)
-      if (!chosen[e])
-        for (int a = 0; a < c; ++a) rim[p.elements(e, a)] = 1;
-  }
+  for (int e : elements)
+    for (int a = 1; a < c; ++a) parent[find_root(parent, p.elements(e, a))] = find_root(parent, p.elements(e, 0));
   std::vector<char> anchored(V, 0);
   for (int v = 0; v < V; ++v)
     if (touched[v] && (p.fixed[v] || rim[v])) anchored[find_root(parent, v)] = 1;
-  // Held: the original handles, every vertex the restriction does not touch, and one vertex
-  // of each unanchored part (a translation of the part changes no distortion).
-  r.fixed.assign(V, 1);
-  std::vector<char> floating(V, 0), held_one(V, 0);
+  std::vector<char> movable(V, 0), floating(V, 0), held_one(V, 0);
   for (int v = 0; v < V; ++v) {
     if (!touched[v] || p.fixed[v] || rim[v]) continue;
     const int root = find_root(parent, v);
-    if (anchored[root]) {
-      r.fixed[v] = 0;
-      continue;
-    }
-    floating[v] = 1;
-    if (held_one[root]) r.fixed[v] = 0;
+    movable[v] = 1;
+    if (anchored[root]) continue;
+    floating[v] = 1;  // a translation of the part changes no distortion: hold one vertex
+    if (!held_one[root]) movable[v] = 0;
     held_one[root] = 1;
   }
-
-  // Equalities: the rows whose vertices are all original handles or anchored free vertices of
-  // the restriction; the others are dropped (a relaxation).
-  if (p.has_equalities()) {
+  Problem q = p;
+  if (!hold_rim && p.has_equalities()) {
     const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
     std::vector<Eigen::Triplet<double>> kept;
     std::vector<double> rhs;
@@ -80,27 +54,37 @@ Problem restricted_problem(const Problem& p, const std::vector<int>& elements, c
       bool keep = true;
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it && keep; ++it) {
         const int v = static_cast<int>(it.col()) / n;
-        keep = hold_rim || p.fixed[v] || (touched[v] && !floating[v]);
+        keep = p.fixed[v] || (touched[v] && !floating[v]);
       }
       if (!keep) continue;
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it; ++it)
         kept.emplace_back(static_cast<int>(rhs.size()), static_cast<int>(it.col()), it.value());
       rhs.push_back(p.eq_rhs[row]);
     }
-    r.eq_matrix.resize(static_cast<Eigen::Index>(rhs.size()), p.eq_matrix.cols());
-    r.eq_matrix.setFromTriplets(kept.begin(), kept.end());
-    r.eq_rhs = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
+    q.eq_matrix.resize(static_cast<Eigen::Index>(rhs.size()), p.eq_matrix.cols());
+    q.eq_matrix.setFromTriplets(kept.begin(), kept.end());
+    q.eq_rhs = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
   }
-  return r;
+  return restrict_to_movable(q, movable, X, &chosen);
 }
 
 ActiveSetSolve solve_restricted(const Problem& p, const std::vector<int>& elements, const Eigen::MatrixXd& X,
                                 const Eigen::VectorXd& bounds, const LinfOptions& options, bool hold_rim) {
   ActiveSetSolve out;
   out.lower_bound = -std::numeric_limits<double>::infinity();
-  out.elements = static_cast<int>(elements.size());
   if (elements.empty()) return out;
-  const Problem r = restricted_problem(p, elements, X, hold_rim);
+  const Subproblem sub = restricted_problem(p, elements, X, hold_rim);
+  out.elements = static_cast<int>(sub.element.size());
+  // The restriction's free elements without a movable vertex (every vertex fixed) are
+  // constants: min over x of max(f(x), c) is max(min f, c).
+  double constant = -std::numeric_limits<double>::infinity();
+  {
+    std::vector<char> kept(p.num_elements(), 0);
+    for (int e : sub.element) kept[e] = 1;
+    for (int e : elements)
+      if (!kept[e] && !(bounds.size() > 0 && bounds[e] >= 0))
+        constant = std::max(constant, (p.jacobian(e, X) - p.target(e)).norm());
+  }
   LinfOptions o = options;
   o.progress = nullptr;
   o.verbose = 0;
@@ -110,17 +94,19 @@ ActiveSetSolve solve_restricted(const Problem& p, const std::vector<int>& elemen
   o.element_bounds.resize(0);
   if (bounds.size() > 0) {
     o.element_bounds.resize(out.elements);
-    for (int j = 0; j < out.elements; ++j) o.element_bounds[j] = bounds[elements[j]];
+    for (int j = 0; j < out.elements; ++j) o.element_bounds[j] = bounds[sub.element[j]];
   }
-  const Result sub = solve_linf(r, o);
-  out.iterations = sub.iterations;
-  if (sub.status == SolveStatus::Infeasible) return out;
-  out.positions = sub.positions;
-  if (hold_rim || !std::isfinite(sub.lower_bound)) return out;  // a restriction bounds nothing
-  out.lower_bound = sub.lower_bound;
-  if (sub.multipliers.size() == out.elements) {
+  const Result r = solve_linf(sub.problem, o);
+  out.iterations = r.iterations;
+  if (r.status == SolveStatus::Infeasible || r.positions.rows() != static_cast<Eigen::Index>(sub.vertex.size()))
+    return out;
+  out.positions = X;
+  for (size_t i = 0; i < sub.vertex.size(); ++i) out.positions.row(sub.vertex[i]) = r.positions.row(i);
+  if (hold_rim || !std::isfinite(r.lower_bound)) return out;  // a restriction bounds nothing
+  out.lower_bound = std::max(r.lower_bound, constant);
+  if (r.multipliers.size() == out.elements && r.lower_bound >= constant) {
     out.multipliers = Eigen::VectorXd::Zero(p.num_elements());
-    for (int j = 0; j < out.elements; ++j) out.multipliers[elements[j]] = sub.multipliers[j];
+    for (int j = 0; j < out.elements; ++j) out.multipliers[sub.element[j]] = r.multipliers[j];
   }
   return out;
 }

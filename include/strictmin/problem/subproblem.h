@@ -21,8 +21,10 @@ struct Subproblem {
 };
 
 // movable: #V flags (a vertex fixed in p never moves, whatever its flag). X: #V by n, the map
-// the held vertices keep (and the movable ones start from).
-Subproblem restrict_to_movable(const Problem& p, const std::vector<char>& movable, const Eigen::MatrixXd& X);
+// the held vertices keep (and the movable ones start from). elements: #E flags, the elements
+// that may be kept (null: every one; the L-infinity active-set solves drop the others).
+Subproblem restrict_to_movable(const Problem& p, const std::vector<char>& movable, const Eigen::MatrixXd& X,
+                               const std::vector<char>* elements = nullptr);
 
 // Vertices within `rings` rings of the seeds: the seeds (ring 1), then every vertex sharing
 // an element with a vertex of the previous ring. rings <= 0: every vertex.
