@@ -4,7 +4,8 @@
 //   bar/N:    a 4N x N bar (8 N^2 triangles), random rotation targets (+-0.5 rad), left end
 //             fixed, right end moved and rotated;
 //   bimba_89k: ../shared/data/disk/bimba_89k.obj as a surface (per-triangle frames, identity
-//             targets), three boundary vertices fixed where an L2 map puts them.
+//             targets), three boundary vertices fixed where an L2 map puts them
+//             (three_pin_disk_problem, tasks/examples.h).
 // Counters: triangles, interior-point iterations, k, certified relative gap.
 // Measure on an idle machine: CHOLMOD, OpenBLAS and TBB all use both cores.
 #include <benchmark/benchmark.h>
@@ -72,27 +73,7 @@ void BM_LinfBimba(benchmark::State& state) {
     }
     return;
   }
-  const Mesh mesh = read_mesh(path);
-  Problem p = make_problem(mesh);
-  std::map<std::pair<int, int>, int> edges;
-  for (int f = 0; f < mesh.num_elements(); ++f)
-    for (int j = 0; j < 3; ++j) {
-      const int a = mesh.F(f, j), b = mesh.F(f, (j + 1) % 3);
-      ++edges[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<int> boundary;
-  for (const auto& [e, count] : edges)
-    if (count == 1) boundary.push_back(e.first);
-  std::sort(boundary.begin(), boundary.end());
-  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
-  Problem pinned = p;
-  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
-  const Result l2 = solve_l2(pinned);
-  std::vector<Handle> handles;
-  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
-    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
-  p.fix(handles);
-  run(state, p);
+  run(state, three_pin_disk_problem(read_mesh(path)));
 }
 
 }  // namespace

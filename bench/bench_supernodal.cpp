@@ -81,25 +81,17 @@ void BM_Solve(benchmark::State& state) {
 }
 
 // One pass each way, to tell the two apart.
-void BM_Forward(benchmark::State& state) {
+void substitution(benchmark::State& state, bool forward) {
   Fixture f(static_cast<int>(state.range(0)));
   Eigen::VectorXd y = Eigen::VectorXd::Ones(f.a.rows());
   for (auto _ : state) {
-    f.chol.forward_in_place(y.data());
+    forward ? f.chol.forward_in_place(y.data()) : f.chol.backward_in_place(y.data());
     y.setOnes();
   }
   set_counters(state, f, 1);
 }
-
-void BM_Backward(benchmark::State& state) {
-  Fixture f(static_cast<int>(state.range(0)));
-  Eigen::VectorXd y = Eigen::VectorXd::Ones(f.a.rows());
-  for (auto _ : state) {
-    f.chol.backward_in_place(y.data());
-    y.setOnes();
-  }
-  set_counters(state, f, 1);
-}
+void BM_Forward(benchmark::State& state) { substitution(state, true); }
+void BM_Backward(benchmark::State& state) { substitution(state, false); }
 
 void BM_Solve2(benchmark::State& state) {
   Fixture f(static_cast<int>(state.range(0)));

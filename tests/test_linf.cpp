@@ -19,6 +19,7 @@
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
+#include "strictmin/tasks/examples.h"
 #include "strictmin/solvers/socp/ordering.h"
 #include "strictmin/solvers/socp/soc.h"
 #include "strictmin/solvers/cholmod_view.h"
@@ -400,12 +401,7 @@ TEST(Linf, EqualityConstraintsActLikeHandles) {
   const int cells = 10;
   const Problem with_handle = figure2_problem(cells, 0.2);
   const int centre = (cells / 2) * (cells + 1) + cells / 2;
-  Problem with_eq = with_handle;
-  with_eq.fixed[centre] = 0;
-  with_eq.eq_matrix.resize(2, 2 * with_eq.num_vertices);
-  std::vector<Eigen::Triplet<double>> t = {{0, 2 * centre, 1.0}, {1, 2 * centre + 1, 1.0}};
-  with_eq.eq_matrix.setFromTriplets(t.begin(), t.end());
-  with_eq.eq_rhs = with_handle.positions.row(centre).transpose();
+  const Problem with_eq = test_support::handle_as_equalities(with_handle, centre);
   const Result a = solve_linf(with_handle);
   const Result b = solve_linf(with_eq);
   expect_solved(a);
@@ -439,7 +435,7 @@ TEST(Linf, CamelheadSurfaceWithThreeFixedVertices) {
   const Mesh mesh = read_mesh(path);
   // Per-triangle 2D frames, identity targets; three boundary vertices held where an L2 map
   // with one pinned vertex puts them.
-  const Problem p = test_support::disk_with_three_pins(mesh);
+  const Problem p = three_pin_disk_problem(mesh);
   ASSERT_EQ(p.num_free(), mesh.num_vertices() - 3);
   Problem pinned = make_problem(mesh);
   pinned.fix({{0, Eigen::Vector2d::Zero()}});

@@ -17,6 +17,7 @@
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/linf.h"
+#include "strictmin/tasks/examples.h"
 #include "strictmin/solvers/linf_active_set.h"
 #include "test_meshes.h"
 
@@ -50,19 +51,7 @@ std::vector<int> all_elements(const Problem& p) {
 }
 
 // Figure 2 of the paper: unit square, boundary fixed, centre moved sideways by `shift`.
-Problem figure2(int cells, double shift) {
-  const Mesh mesh = make_grid(cells, cells);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const int i = v % (cells + 1), j = v / (cells + 1);
-    if (i == 0 || j == 0 || i == cells || j == cells) h.push_back({v, mesh.V.row(v).transpose()});
-  }
-  const int centre = (cells / 2) * (cells + 1) + cells / 2;
-  h.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + shift, mesh.V(centre, 1))});
-  p.fix(h);
-  return p;
-}
+Problem figure2(int cells, double shift) { return example_problem(make_square_example(cells, shift)); }
 
 }  // namespace
 
@@ -169,12 +158,7 @@ TEST(ActiveSet, EqualitiesOfTheRestrictionAreKept) {
   const int cells = 10;
   const Problem with_handle = figure2(cells, 0.2);
   const int centre = (cells / 2) * (cells + 1) + cells / 2;
-  Problem with_eq = with_handle;
-  with_eq.fixed[centre] = 0;
-  with_eq.eq_matrix.resize(2, 2 * with_eq.num_vertices);
-  std::vector<Eigen::Triplet<double>> t = {{0, 2 * centre, 1.0}, {1, 2 * centre + 1, 1.0}};
-  with_eq.eq_matrix.setFromTriplets(t.begin(), t.end());
-  with_eq.eq_rhs = with_handle.positions.row(centre).transpose();
+  const Problem with_eq = test_support::handle_as_equalities(with_handle, centre);
   const Reference ref = reference(with_handle);
   const ActiveSetSolve b = active_set_bound(with_eq, all_elements(with_eq), ref.r.positions, {}, LinfOptions{});
   EXPECT_NEAR(b.lower_bound, ref.k, 1e-7);
@@ -261,7 +245,7 @@ TEST(ActiveSet, RealSurfacesAgreeWithAndWithout) {
   for (const char* name : {"cow_disk", "hand"}) {
     const std::string path = std::string(STRICTMIN_SHARED_DATA) + "/disk/" + name + ".obj";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
-    const Problem p = test_support::disk_with_three_pins(read_mesh(path));
+    const Problem p = three_pin_disk_problem(read_mesh(path));
     LinfOptions on, off;
     off.active_set_bounds = false;
     const Result a = solve_linf(p, on), b = solve_linf(p, off);

@@ -1,10 +1,13 @@
 #include "strictmin/tasks/examples.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/solvers/l2.h"
 
 namespace strictmin {
 namespace {
@@ -70,6 +73,30 @@ Example make_example(const std::string& name) {
   if (name == "bar") return bar();
   if (name == "tetbar") return tetbar();
   throw InputError("unknown example '" + name + "' (known: square, bar, tetbar)");
+}
+
+Problem three_pin_disk_problem(const Mesh& mesh) {
+  Problem p = make_problem(mesh);
+  std::map<std::pair<int, int>, int> edges;
+  for (int f = 0; f < mesh.num_elements(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const int a = mesh.F(f, j), c = mesh.F(f, (j + 1) % 3);
+      ++edges[{std::min(a, c), std::max(a, c)}];
+    }
+  std::vector<int> boundary;
+  for (const auto& [e, count] : edges)
+    if (count == 1) boundary.push_back(e.first);
+  std::sort(boundary.begin(), boundary.end());
+  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+  if (boundary.size() < 3) return p;
+  Problem pinned = p;
+  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
+  const Result l2 = solve_l2(pinned);
+  std::vector<Handle> handles;
+  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
+    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
+  p.fix(handles);
+  return p;
 }
 
 }  // namespace strictmin

@@ -1,13 +1,10 @@
 #include "test_meshes.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
-#include <map>
 #include <random>
 #include <vector>
 
 #include "strictmin/mesh/generators.h"
-#include "strictmin/solvers/l2.h"
 
 namespace strictmin::test_support {
 
@@ -28,28 +25,16 @@ Problem random_target_bar() {
   return p;
 }
 
-Problem disk_with_three_pins(const Mesh& mesh) {
-  Problem p = make_problem(mesh);
-  std::map<std::pair<int, int>, int> edges;
-  for (int f = 0; f < mesh.num_elements(); ++f)
-    for (int j = 0; j < 3; ++j) {
-      const int a = mesh.F(f, j), c = mesh.F(f, (j + 1) % 3);
-      ++edges[{std::min(a, c), std::max(a, c)}];
-    }
-  std::vector<int> boundary;
-  for (const auto& [e, count] : edges)
-    if (count == 1) boundary.push_back(e.first);
-  std::sort(boundary.begin(), boundary.end());
-  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
-  if (boundary.size() < 3) return p;
-  Problem pinned = p;
-  pinned.fix({{boundary[0], Eigen::Vector2d::Zero()}});
-  const Result l2 = solve_l2(pinned);
-  std::vector<Handle> handles;
-  for (size_t i : {size_t{0}, boundary.size() / 3, 2 * boundary.size() / 3})
-    handles.push_back({boundary[i], l2.positions.row(boundary[i]).transpose()});
-  p.fix(handles);
-  return p;
+Problem handle_as_equalities(const Problem& p, int vertex) {
+  Problem q = p;
+  const int n = p.image_dim;
+  q.fixed[vertex] = 0;
+  q.eq_matrix.resize(n, static_cast<Eigen::Index>(n) * p.num_vertices);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < n; ++r) t.emplace_back(r, n * vertex + r, 1.0);
+  q.eq_matrix.setFromTriplets(t.begin(), t.end());
+  q.eq_rhs = p.positions.row(vertex).transpose();
+  return q;
 }
 
 }  // namespace strictmin::test_support

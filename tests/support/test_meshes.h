@@ -1,6 +1,5 @@
 #pragma once
 // Test problems shared by several test files.
-#include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
 
 namespace strictmin::test_support {
@@ -10,9 +9,8 @@ namespace strictmin::test_support {
 // fixed, the right end turned by 0.5 rad and moved. Used for the L_p and exact tests.
 Problem random_target_bar();
 
-// The field-deviation problem of a disk mesh (per-triangle frames, identity targets) with three
-// boundary vertices held where an L2 map with one pinned vertex puts them (a third of the
-// boundary apart, in vertex order): the surface problems of bench_linf and the tests.
-Problem disk_with_three_pins(const Mesh& mesh);
+// The same problem with one handle replaced by equality rows x_v = its position (two rows in
+// 2D): the vertex becomes free, held by the equalities instead.
+Problem handle_as_equalities(const Problem& p, int vertex);
 
 }  // namespace strictmin::test_support

@@ -34,4 +34,10 @@ Example make_square_example(int cells, double shift = 0.15);
 // The example's Problem: make_problem(mesh) with its handles fixed.
 Problem example_problem(const Example& example);
 
+// A disk mesh's parametrization problem (make_problem: per-triangle frames, identity targets)
+// with three boundary vertices held, a third of the boundary apart (in vertex order), where
+// an L2 map with one pinned vertex puts them: the surface problem of the L-infinity
+// benchmark and tests. A mesh with fewer than three boundary vertices is returned unpinned.
+Problem three_pin_disk_problem(const Mesh& disk);
+
 }  // namespace strictmin
