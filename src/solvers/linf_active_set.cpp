@@ -104,10 +104,11 @@ ActiveSetSolve solve_restricted(const Problem& p, const std::vector<int>& elemen
   for (size_t i = 0; i < sub.vertex.size(); ++i) out.positions.row(sub.vertex[i]) = r.positions.row(i);
   if (hold_rim || !std::isfinite(r.lower_bound)) return out;  // a restriction bounds nothing
   out.lower_bound = std::max(r.lower_bound, constant);
-  if (r.multipliers.size() == out.elements && r.lower_bound >= constant) {
-    out.multipliers = Eigen::VectorXd::Zero(p.num_elements());
+  // The dual weights: the restricted solve's, or none on the free elements when a constant
+  // element sets the bound (its own weight, as in solve_linf, is not an element's).
+  out.multipliers = Eigen::VectorXd::Zero(p.num_elements());
+  if (r.multipliers.size() == out.elements && r.lower_bound >= constant)
     for (int j = 0; j < out.elements; ++j) out.multipliers[sub.element[j]] = r.multipliers[j];
-  }
   return out;
 }
 
