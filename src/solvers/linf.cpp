@@ -352,11 +352,11 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.element_multipliers.resize(0);
     }
   };
-  // The active-set solves (linf_active_set.h), for tight tolerances, once the method is
-  // within 1e3 times the tolerance: the bound from the elements within reach of the maximum
-  // (reach 1e3 times the iterates' certified gap, ten times more on each retry; at most three
-  // tries), and the map from the same elements widened, tried again at later iterates while
-  // k stays above the bound (at most four maps).
+  // The active-set solves (linf_active_set.h), for tight tolerances, once the method is near
+  // (see try_active_set): the bound from the elements within reach of the maximum (reach 1e3
+  // times the iterates' certified gap, ten times more on each retry; at most three tries),
+  // and the map from the same elements widened, tried again at a later iterate while k stays
+  // above a bound within 1e2 tolerances of it (at most two maps).
   std::vector<std::pair<int, double>> constant_distortions;  // constant free elements
   for (int e : cls.constant_elements)
     if (!socp::has_bound(bounds, e))
