@@ -59,9 +59,10 @@ NormalEquations::NormalEquations(const ConeProgram& program, const IpmSettings& 
 void NormalEquations::build_pattern() {
   const int N = p_.num_x, n = p_.n, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
   npairs_ = L * (L + 1) / 2;
-  // Fill-reducing order of the free vertices, expanded to their n dofs.
+  const int F = N / n;
+  // The free vertices' graph: elements and equality rows couple their vertices.
+  std::vector<int> offset(F + 1, 0), adj;
   {
-    const int F = N / n;
     std::vector<std::vector<int>> nb(F);
     for (int i = 0; i < E; ++i)
       for (int a = 0; a < c; ++a)
@@ -69,86 +70,102 @@ void NormalEquations::build_pattern() {
           const int fa = p_.dof_base[i * c + a], fb = p_.dof_base[i * c + b];
           if (fa >= 0 && fb >= 0 && fa != fb) nb[fa / n].push_back(fb / n);
         }
-    if (p_.num_eq() > 0) {  // equality rows couple their vertices too
+    if (p_.num_eq() > 0) {
       for (int row = 0; row < p_.A.rows(); ++row)
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator a(p_.A, row); a; ++a)
           for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator b(p_.A, row); b; ++b)
             if (a.col() / n != b.col() / n) nb[a.col() / n].push_back(static_cast<int>(b.col() / n));
     }
-    std::vector<int> offset(F + 1, 0), adj;
     for (int f = 0; f < F; ++f) {
       std::sort(nb[f].begin(), nb[f].end());
       nb[f].erase(std::unique(nb[f].begin(), nb[f].end()), nb[f].end());
       offset[f + 1] = offset[f] + static_cast<int>(nb[f].size());
       adj.insert(adj.end(), nb[f].begin(), nb[f].end());
     }
-    // Large problems: split by a top-level separator and factorise the halves on two threads
-    // (split_cholesky.h); the order is then [part 0 | part 1 | separator].
-    std::vector<int> order;
-    if (F * n >= settings_.split_min_dofs) {
-      const std::vector<int> part = vertex_bisection(offset, adj);
-      if (!part.empty()) {
-        order = bisected_ordering(offset, adj, part, split_sizes_);
-        for (int& size : split_sizes_) size *= n;
-      }
+  }
+  // Fill-reducing order of the free vertices, expanded to their n dofs. Large problems: split
+  // by a top-level separator and factorise the halves on two threads (split_cholesky.h); the
+  // order is then [part 0 | part 1 | separator].
+  std::vector<int> order;
+  if (F * n >= settings_.split_min_dofs) {
+    const std::vector<int> part = vertex_bisection(offset, adj);
+    if (!part.empty()) {
+      order = bisected_ordering(offset, adj, part, split_sizes_);
+      for (int& size : split_sizes_) size *= n;
     }
-    if (order.empty()) order = vertex_ordering(offset, adj);
-    perm_.assign(N, 0);
-    for (int i = 0; i < F; ++i)
-      for (int r = 0; r < n; ++r) perm_[order[i] * n + r] = i * n + r;
   }
-  // Upper-triangle pattern (in the permuted numbering): element blocks, the diagonal, A^T A.
-  // Upper, because CHOLMOD's supernodal factorisation reads the upper triangle: a lower one
-  // would be transposed on every factorisation.
-  std::vector<Eigen::Triplet<double>> pattern;
-  pattern.reserve(static_cast<size_t>(E) * npairs_ + N);
-  std::vector<int> dof(L);
-  auto element_dofs = [&](int i) {
-    for (int j = 0; j < c; ++j)
+  if (order.empty()) order = vertex_ordering(offset, adj);
+  std::vector<int> rank(F);  // vertex -> its place in the order
+  for (int i = 0; i < F; ++i) rank[order[i]] = i;
+  perm_.assign(N, 0);
+  for (int v = 0; v < F; ++v)
+    for (int r = 0; r < n; ++r) perm_[v * n + r] = rank[v] * n + r;
+
+  // The upper triangle's pattern (in the new numbering), straight from the graph: the columns
+  // of vertex J hold, for each neighbour I < J (ascending), the n rows of I, then J's own rows
+  // up to the diagonal. Upper, because CHOLMOD's supernodal factorisation reads the upper
+  // triangle: a lower one would be transposed on every factorisation.
+  std::vector<int> lower_offset(F + 1, 0), lower;
+  for (int v = 0; v < F; ++v)
+    for (int e = offset[v]; e < offset[v + 1]; ++e)
+      if (rank[adj[e]] < rank[v]) ++lower_offset[rank[v] + 1];
+  for (int J = 0; J < F; ++J) lower_offset[J + 1] += lower_offset[J];
+  lower.resize(lower_offset[F]);
+  parallel_for_index(F, kGrain, [&](int begin, int end) {
+    for (int v = begin; v < end; ++v) {
+      const int J = rank[v];
+      int* out = lower.data() + lower_offset[J];
+      for (int e = offset[v]; e < offset[v + 1]; ++e)
+        if (rank[adj[e]] < J) *out++ = rank[adj[e]];
+      std::sort(lower.data() + lower_offset[J], out);
+    }
+  });
+  matrix_.resize(N, N);
+  {
+    std::vector<int> outer(N + 1, 0);
+    for (int J = 0; J < F; ++J)
       for (int r = 0; r < n; ++r) {
-        const int base = p_.dof_base[i * c + j];
-        dof[j * n + r] = base < 0 ? -1 : perm_[base + r];
+        const int column = J * n + r;
+        outer[column + 1] = outer[column] + n * (lower_offset[J + 1] - lower_offset[J]) + r + 1;
       }
-  };
-  for (int i = 0; i < E; ++i) {
-    element_dofs(i);
-    for (int l1 = 0; l1 < L; ++l1)
-      for (int l2 = 0; l2 <= l1; ++l2)
-        if (dof[l1] >= 0 && dof[l2] >= 0)
-          pattern.emplace_back(std::min(dof[l1], dof[l2]), std::max(dof[l1], dof[l2]), 1.0);
+    matrix_.resizeNonZeros(outer[N]);
+    std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
+    int* inner = matrix_.innerIndexPtr();
+    parallel_for_index(F, kGrain, [&](int begin, int end) {
+      for (int J = begin; J < end; ++J)
+        for (int r = 0; r < n; ++r) {
+          int* out = inner + outer[J * n + r];
+          for (int e = lower_offset[J]; e < lower_offset[J + 1]; ++e)
+            for (int q = 0; q < n; ++q) *out++ = lower[e] * n + q;
+          for (int q = 0; q <= r; ++q) *out++ = J * n + q;
+        }
+    });
+    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + outer[N], 0.0);
   }
-  for (int d = 0; d < N; ++d) pattern.emplace_back(d, d, 1.0);
-  Eigen::SparseMatrix<double> ata;
+  const int* outer = matrix_.outerIndexPtr();
+  // The nonzero of entry (row, col), row <= col, in the new numbering.
+  auto find = [&](int row, int col) {
+    const int I = row / n, J = col / n;
+    if (I == J) return outer[col] + n * (lower_offset[J + 1] - lower_offset[J]) + row % n;
+    const int* first = lower.data() + lower_offset[J];
+    const int* last = lower.data() + lower_offset[J + 1];
+    const int k = static_cast<int>(std::lower_bound(first, last, I) - first);
+    return outer[col] + n * k + row % n;
+  };
   auto upper_of = [&](Eigen::Index r, Eigen::Index col) {
     const int a = perm_[r], b = perm_[col];
     return std::make_pair(std::min(a, b), std::max(a, b));
   };
+  // Equalities: A^T A / rho joins the matrix (its couplings are edges of the graph above).
+  Eigen::SparseMatrix<double> ata;
   if (p_.num_eq() > 0) {
     at_ = p_.A.transpose();
     ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
-    for (int col = 0; col < ata.outerSize(); ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it) {
-        const auto [r, cc] = upper_of(it.row(), it.col());
-        pattern.emplace_back(r, cc, 1.0);
-      }
   }
-  matrix_.resize(N, N);
-  matrix_.setFromTriplets(pattern.begin(), pattern.end());
-  matrix_.makeCompressed();
-  pattern.clear();
-  pattern.shrink_to_fit();
-
-  const int* outer = matrix_.outerIndexPtr();
-  const int* inner = matrix_.innerIndexPtr();
-  auto find = [&](int row, int col) {
-    const int* first = inner + outer[col];
-    const int* last = inner + outer[col + 1];
-    return static_cast<int>(std::lower_bound(first, last, row) - inner);
-  };
   const Eigen::Index nnz = matrix_.nonZeros();
   slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
   p_values_.setZero(nnz);
-  // Each element pair's nonzero (binary searches: in parallel), then the counts.
+  // Each element pair's nonzero (in parallel), then the counts.
   parallel_for_index(E, kGrain, [&](int begin, int end) {
     std::vector<int> local(L);
     for (int i = begin; i < end; ++i) {
