@@ -63,17 +63,6 @@ std::vector<int> grid_boundary(int nx, int ny) {
   return b;
 }
 
-// Figure 2: unit square, boundary fixed, centre moved sideways.
-Problem figure2_problem(int cells, double shift) {
-  const Mesh mesh = make_grid(cells, cells);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> handles;
-  for (int v : grid_boundary(cells, cells)) handles.push_back({v, mesh.V.row(v).transpose()});
-  const int centre = (cells / 2) * (cells + 1) + cells / 2;
-  handles.push_back({centre, Eigen::Vector2d(mesh.V(centre, 0) + shift, mesh.V(centre, 1))});
-  p.fix(handles);
-  return p;
-}
 
 // --- cone algebra ------------------------------------------------------------------------
 
@@ -122,7 +111,7 @@ TEST(SocAlgebra, NesterovToddScalingIdentities) {
 // --- optimality --------------------------------------------------------------------------
 
 TEST(Linf, Figure2SquareBeatsL2WithCertifiedGap) {
-  const Problem p = figure2_problem(20, 0.2);
+  const Problem p = test_support::figure2(20, 0.2);
   const Result l2 = solve_l2(p);
   ASSERT_TRUE(l2.ok());
   int calls = 0;
@@ -221,7 +210,7 @@ TEST(Linf, RandomRotationTargetsIterationCountsStayFlat) {
 }
 
 TEST(Linf, ProgressAndHistory) {
-  const Problem p = figure2_problem(6, 0.1);
+  const Problem p = test_support::figure2(6, 0.1);
   std::vector<IterationRecord> seen;
   LinfOptions o;
   o.progress = [&](const IterationRecord& r) { seen.push_back(r); };
@@ -243,7 +232,7 @@ TEST(Linf, ProgressAndHistory) {
 TEST(Linf, FixedBoundsAreMetAndLowerTheRest) {
   // One step of the strict-minimizer algorithm: bound the elements at the maximum, minimize
   // the rest.
-  const Problem p = figure2_problem(10, 0.15);
+  const Problem p = test_support::figure2(10, 0.15);
   const Result r1 = solve_linf(p);
   expect_solved(r1);
   const double k1 = r1.distortion.maxCoeff();
@@ -280,7 +269,7 @@ TEST(Linf, FixedBoundsAreMetAndLowerTheRest) {
 // weak-duality inequality sum lambda_T D_T(x) + sum_bounded lambda_T (D_T(x) - k_T) >= bound
 // holds for any map x, here random perturbations of the optimum and the L2 map.
 TEST(Linf, MultipliersCertifyTheBoundForEveryMap) {
-  const Problem p = figure2_problem(10, 0.15);
+  const Problem p = test_support::figure2(10, 0.15);
   const Result r1 = solve_linf(p);
   LinfOptions o;
   o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
@@ -331,7 +320,7 @@ TEST(Linf, MultipliersCertifyTheBoundForEveryMap) {
 TEST(Linf, InfeasibleBoundsAreReportedWithTheAmount) {
   // Every element bounded by 0.05: the centre moves 0.2 while the boundary (0.5 away) stays,
   // so |J - I| >= 0.4 somewhere. Phase 1 certifies it.
-  const Problem p = figure2_problem(8, 0.2);
+  const Problem p = test_support::figure2(8, 0.2);
   LinfOptions o;
   o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), 0.05);
   const Result r = solve_linf(p, o);
@@ -344,7 +333,7 @@ TEST(Linf, InfeasibleBoundsAreReportedWithTheAmount) {
   const Result free = solve_linf(p);
   int worst = 0;
   free.distortion.maxCoeff(&worst);
-  Problem tiny = figure2_problem(2, 0.2);  // every vertex fixed: all elements constant
+  Problem tiny = test_support::figure2(2, 0.2);  // every vertex fixed: all elements constant
   LinfOptions o3;
   o3.element_bounds = Eigen::VectorXd::Constant(tiny.num_elements(), 0.0);
   const Result r3 = solve_linf(tiny, o3);
@@ -381,7 +370,7 @@ TEST(Linf, ConstantElementsBoundK) {
 }
 
 TEST(Linf, RejectsBoundsOfTheWrongSize) {
-  const Problem p = figure2_problem(4, 0.1);
+  const Problem p = test_support::figure2(4, 0.1);
   LinfOptions o;
   o.element_bounds = Eigen::VectorXd::Constant(3, 1.0);
   EXPECT_THROW(solve_linf(p, o), InputError);
@@ -399,8 +388,8 @@ TEST(Linf, UndeterminedMapIsANumericalError) {
 TEST(Linf, EqualityConstraintsActLikeHandles) {
   // Fixing the centre by two equality rows gives the same optimum as fixing it by a handle.
   const int cells = 10;
-  const Problem with_handle = figure2_problem(cells, 0.2);
-  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  const Problem with_handle = test_support::figure2(cells, 0.2);
+  const int centre = test_support::figure2_centre(cells);
   const Problem with_eq = test_support::handle_as_equalities(with_handle, centre);
   const Result a = solve_linf(with_handle);
   const Result b = solve_linf(with_eq);
@@ -411,7 +400,7 @@ TEST(Linf, EqualityConstraintsActLikeHandles) {
 }
 
 TEST(Linf, MinimizeL2AmongOptimalKeepsKAndLowersTheEnergy) {
-  const Problem p = figure2_problem(12, 0.2);
+  const Problem p = test_support::figure2(12, 0.2);
   const Result r1 = solve_linf(p);
   expect_solved(r1);
   LinfOptions o;
@@ -685,7 +674,7 @@ TEST(SupernodalFactor, MatchesCholmodFactorAndDetectsIndefinite) {
 
 // Above 20,000 free dofs the solver splits the normal equations (socp/split_cholesky.h).
 TEST(Linf, LargeSquareSolvedWithSplitFactorisation) {
-  const Problem p = figure2_problem(102, 0.2);  // 101^2 free vertices: 20,402 dofs
+  const Problem p = test_support::figure2(102, 0.2);  // 101^2 free vertices: 20,402 dofs
   ASSERT_GE(p.num_free() * 2, 20000);
   const Result r = solve_linf(p);
   expect_solved(r);

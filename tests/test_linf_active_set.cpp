@@ -50,9 +50,6 @@ std::vector<int> all_elements(const Problem& p) {
   return e;
 }
 
-// Figure 2 of the paper: unit square, boundary fixed, centre moved sideways by `shift`.
-Problem figure2(int cells, double shift) { return example_problem(make_square_example(cells, shift)); }
-
 }  // namespace
 
 TEST(ActiveSet, WholeProblemGivesTheOptimum) {
@@ -130,7 +127,7 @@ TEST(ActiveSet, UnanchoredPartsKeepTheirOptimum) {
 // Restricted to the elements near the maximum of an optimal map, the bound is the optimum;
 // the multipliers are the restriction's (zero elsewhere, nonnegative).
 TEST(ActiveSet, ElementsNearTheMaximumCertifyTheOptimum) {
-  for (const Problem& p : {test_support::random_target_bar(), figure2(16, 0.2)}) {
+  for (const Problem& p : {test_support::random_target_bar(), test_support::figure2(16, 0.2)}) {
     const Reference ref = reference(p);
     std::vector<int> near;
     for (int e = 0; e < p.num_elements(); ++e)
@@ -156,8 +153,8 @@ TEST(ActiveSet, ElementsNearTheMaximumCertifyTheOptimum) {
 // a handle: without them the bound would fall to the optimum with a free centre).
 TEST(ActiveSet, EqualitiesOfTheRestrictionAreKept) {
   const int cells = 10;
-  const Problem with_handle = figure2(cells, 0.2);
-  const int centre = (cells / 2) * (cells + 1) + cells / 2;
+  const Problem with_handle = test_support::figure2(cells, 0.2);
+  const int centre = test_support::figure2_centre(cells);
   const Problem with_eq = test_support::handle_as_equalities(with_handle, centre);
   const Reference ref = reference(with_handle);
   const ActiveSetSolve b = active_set_bound(with_eq, all_elements(with_eq), ref.r.positions, {}, LinfOptions{});
@@ -167,7 +164,7 @@ TEST(ActiveSet, EqualitiesOfTheRestrictionAreKept) {
 
 // solve_linf with the active-set bound: the same optimum, certified, in fewer iterations.
 TEST(ActiveSet, SolveLinfCertifiesSooner) {
-  const Problem p = figure2(40, 0.2);
+  const Problem p = test_support::figure2(40, 0.2);
   LinfOptions with, without;
   without.active_set_bounds = false;
   const Result a = solve_linf(p, with), b = solve_linf(p, without);
@@ -186,7 +183,7 @@ TEST(ActiveSet, SolveLinfCertifiesSooner) {
 // touches, so every other element keeps its distortion exactly, the restricted elements' maximum
 // does not rise, and the handles and equalities still hold.
 TEST(ActiveSet, MapMovesOnlyTheRestrictionsInterior) {
-  const Problem p = figure2(16, 0.2);
+  const Problem p = test_support::figure2(16, 0.2);
   // A map that is not optimal: a few iterations short.
   LinfOptions early;
   early.max_iterations = 6;
@@ -224,7 +221,7 @@ TEST(ActiveSet, MapMovesOnlyTheRestrictionsInterior) {
 }
 
 TEST(ActiveSet, WideningAddsRingsWithinTheGrowthLimit) {
-  const Problem p = figure2(10, 0.2);
+  const Problem p = test_support::figure2(10, 0.2);
   const std::vector<int> one = {0};
   EXPECT_EQ(widen_by_rings(p, one, 0, 10.0), one);
   const std::vector<int> ring1 = widen_by_rings(p, one, 1, 100.0);

@@ -11,6 +11,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/problem/parts.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/problem/subproblem.h"
 
@@ -209,4 +210,30 @@ TEST(Subproblem, KeepsTheElementsOfMovableVerticesAndTheirJacobians) {
   EXPECT_EQ(s.eq_matrix.nonZeros(), 1);
   EXPECT_EQ(std::count(sub.vertex.begin(), sub.vertex.end(), 48), 0);
   EXPECT_NEAR(s.eq_rhs[0], 0.3 + X(48, 0), 1e-15);
+}
+
+// Parts: a 2 x 1 grid (4 triangles, 6 vertices) and a separate triangle (3 more vertices).
+TEST(Parts, JoinVerticesThroughElementsAndFindTheUnanchored) {
+  Mesh mesh = make_grid(2, 1);
+  const int V0 = mesh.num_vertices(), E0 = mesh.num_elements();
+  mesh.V.conservativeResize(V0 + 3, Eigen::NoChange);
+  mesh.V.bottomRows(3) << 5, 0, 6, 0, 5, 1;
+  mesh.F.conservativeResize(E0 + 1, Eigen::NoChange);
+  mesh.F.row(E0) << V0, V0 + 1, V0 + 2;
+  Problem p = make_problem(mesh);
+  const ElementParts all = element_parts(p);
+  ASSERT_EQ(all.count, 2);
+  for (int v = 0; v < V0; ++v) EXPECT_EQ(all.part[v], 0) << v;
+  for (int v = V0; v < V0 + 3; ++v) EXPECT_EQ(all.part[v], 1) << v;
+  EXPECT_EQ(unanchored_parts(all, p.fixed), (std::vector<int>{0, V0}));
+  p.fix({{V0 + 1, Eigen::Vector2d(6, 0)}});
+  EXPECT_EQ(unanchored_parts(all, p.fixed), (std::vector<int>{0}));
+  // Only the separate triangle: the grid's vertices are in no part.
+  std::vector<char> only(p.num_elements(), 0);
+  only[E0] = 1;
+  const ElementParts one = element_parts(p, &only);
+  ASSERT_EQ(one.count, 1);
+  for (int v = 0; v < V0; ++v) EXPECT_EQ(one.part[v], -1) << v;
+  EXPECT_EQ(one.part[V0 + 2], 0);
+  EXPECT_TRUE(unanchored_parts(one, p.fixed).empty());
 }

@@ -6,38 +6,12 @@
 #include <numeric>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/problem/parts.h"
 
 namespace strictmin {
-namespace {
-
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
-}  // namespace
 
 std::vector<int> unanchored_components(const Problem& p) {
-  std::vector<int> parent(p.num_vertices);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int j = 1; j < p.corners(); ++j)
-      parent[find_root(parent, p.elements(e, j))] = find_root(parent, p.elements(e, 0));
-  std::vector<char> anchored(p.num_vertices, 0), used(p.num_vertices, 0);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int j = 0; j < p.corners(); ++j) used[p.elements(e, j)] = 1;
-  for (int v = 0; v < p.num_vertices; ++v)
-    if (used[v] && p.fixed[v]) anchored[find_root(parent, v)] = 1;
-  std::vector<int> out;
-  std::vector<char> seen(p.num_vertices, 0);
-  for (int v = 0; v < p.num_vertices; ++v) {
-    const int r = find_root(parent, v);
-    if (used[v] && !anchored[r] && !seen[r]) {
-      seen[r] = 1;
-      out.push_back(v);
-    }
-  }
-  return out;
+  return unanchored_parts(element_parts(p), p.fixed);
 }
 
 L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
@@ -126,19 +100,21 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
   return X;
 }
 
-Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
+double field_deviation(const Problem& p, const Eigen::MatrixXd& X, int e) {
   const int n = p.image_dim, m = p.domain_dim, c = p.corners();
+  double sum = 0;  // ||sum_j q_j g_j^T - R_T||_F^2, entry by entry
+  for (int r = 0; r < n; ++r)
+    for (int k = 0; k < m; ++k) {
+      double J = -p.targets(e * n + r, k);
+      for (int j = 0; j < c; ++j) J += X(p.elements(e, j), r) * p.gradients(e * c + j, k);
+      sum += J * J;
+    }
+  return std::sqrt(sum);
+}
+
+Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
   Eigen::VectorXd d(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) {
-    double sum = 0;  // ||sum_j q_j g_j^T - R_T||_F^2, entry by entry
-    for (int r = 0; r < n; ++r)
-      for (int k = 0; k < m; ++k) {
-        double J = -p.targets(e * n + r, k);
-        for (int j = 0; j < c; ++j) J += X(p.elements(e, j), r) * p.gradients(e * c + j, k);
-        sum += J * J;
-      }
-    d(e) = std::sqrt(sum);
-  }
+  for (int e = 0; e < p.num_elements(); ++e) d(e) = field_deviation(p, X, e);
   return d;
 }
 

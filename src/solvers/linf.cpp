@@ -18,6 +18,7 @@
 #include <tbb/task_group.h>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/problem/parts.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf_active_set.h"
 #include "strictmin/solvers/socp/certificate.h"
@@ -53,11 +54,6 @@ socp::IpmSettings ipm_settings(const LinfOptions& o) {
 // A starting k above every value: max + 10% + 1% of the scale.
 double start_above(double max_value) { return max_value + 0.1 * std::abs(max_value) + 1e-2 * (1.0 + std::abs(max_value)); }
 
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
 struct Phase1 {
   bool feasible = true;
   double t = -kInf;          // max_T (D_T - k_T) at the returned x
@@ -72,32 +68,17 @@ struct Phase1 {
 // without any fixed vertex is anchored at one vertex (D_T is translation invariant).
 Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen::VectorXd& bounds,
                   const Eigen::MatrixXd& X0, const LinfOptions& options) {
-  const int n = p.image_dim, c = p.corners();
+  const int n = p.image_dim;
   const std::vector<int>& elems = cls.bounded_elements;
-  std::vector<char> in_sub(p.num_vertices, 0), held(p.fixed.begin(), p.fixed.end());
-  std::vector<int> parent(p.num_vertices);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (int e : elems)
-    for (int j = 0; j < c; ++j) {
-      in_sub[p.elements(e, j)] = 1;
-      parent[find_root(parent, p.elements(e, j))] = find_root(parent, p.elements(e, 0));
-    }
-  if (!p.has_equalities()) {
-    std::vector<char> anchored(p.num_vertices, 0);
-    for (int v = 0; v < p.num_vertices; ++v)
-      if (in_sub[v] && p.fixed[v]) anchored[find_root(parent, v)] = 1;
-    for (int v = 0; v < p.num_vertices; ++v) {
-      const int r = find_root(parent, v);
-      if (in_sub[v] && !anchored[r]) {
-        anchored[r] = 1;
-        held[v] = 1;
-      }
-    }
-  }
+  std::vector<char> bounded(p.num_elements(), 0), held(p.fixed.begin(), p.fixed.end());
+  for (int e : elems) bounded[e] = 1;
+  const ElementParts parts = element_parts(p, &bounded);
+  if (!p.has_equalities())
+    for (int v : unanchored_parts(parts, p.fixed)) held[v] = 1;
   std::vector<int> vertex_dof(p.num_vertices, -1);
   int num_x = 0;
   for (int v = 0; v < p.num_vertices; ++v) {
-    if (!in_sub[v]) held[v] = 1;  // outside: constant here
+    if (parts.part[v] < 0) held[v] = 1;  // outside: constant here
     if (!held[v]) {
       vertex_dof[v] = num_x;
       num_x += n;
@@ -168,7 +149,6 @@ struct MainSolve {
   double iterate_bound = -kInf;     // the best of the iterates' own certificates
   int active_set_maps = 0;
   size_t active_set_elements = 0;  // in the last restriction tried
-  bool active_set_close = false;   // its bound within 1e2 tolerances of k
   double previous_k = kInf;        // max distortion of the previous iterate
   bool stalled = false;
   bool last_certified = true;  // the monitor formed the certificate of the last iterate
@@ -334,6 +314,12 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       if (d[i] - prog.head_b[i] > options.feasibility_tolerance * std::max(1.0, prog.head_b[i])) return false;
     return true;
   };
+  // k of a map: the largest distortion of a free element (constant ones included).
+  auto max_free = [&](const Eigen::VectorXd& d) {
+    double k = has_kmin ? cls.constant_max : -kInf;
+    for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+    return k;
+  };
   auto equalities_ok = [&](const Eigen::VectorXd& x) {
     if (prog.num_eq() == 0) return true;
     const double scale = std::max(1.0, prog.beq.cwiseAbs().maxCoeff());
@@ -357,10 +343,6 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   // times the iterates' certified gap, ten times more on each retry; at most three tries),
   // and the map from the same elements widened, tried again at a later iterate while k stays
   // above a bound within 1e2 tolerances of it (at most two maps).
-  std::vector<std::pair<int, double>> constant_distortions;  // constant free elements
-  for (int e : cls.constant_elements)
-    if (!socp::has_bound(bounds, e))
-      constant_distortions.emplace_back(e, (p.jacobian(e, p.positions) - p.target(e)).norm());
   Eigen::VectorXd effective_bounds = bounds;
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += relax;
@@ -375,8 +357,9 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
         const double top = i < num_free_cones ? k : prog.head_b[i];
         if (d[i] >= top - reach) chosen.push_back(elems[i]);
       }
-      for (const auto& [e, de] : constant_distortions)
-        if (de >= k - reach) chosen.push_back(e);
+      for (size_t j = 0; j < cls.constant_elements.size(); ++j)
+        if (!socp::has_bound(bounds, cls.constant_elements[j]) && cls.constant_distortion[j] >= k - reach)
+          chosen.push_back(cls.constant_elements[j]);
       if (chosen.size() <= cap || reach < 1e-3 * tol) return chosen;
     }
   };
@@ -390,8 +373,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     if (m.positions.size() == 0 || !m.positions.allFinite()) return;
     const Eigen::VectorXd x2 = p.free_dofs(m.positions);
     const Eigen::VectorXd d2 = socp::cone_distortions(prog, x2);
-    double k2 = has_kmin ? cls.constant_max : -kInf;
-    for (int i = 0; i < num_free_cones; ++i) k2 = std::max(k2, d2[i]);
+    const double k2 = max_free(d2);
     if (k2 < ms.k && bound_ok(d2) && equalities_ok(x2)) {
       ms.k = k2;
       ms.x = x2;
@@ -410,16 +392,17 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const bool near = ms.k - info.dobj <= 1e3 * tol || info.gap <= 1e3 * tol;
     const bool settled = ms.k - ms.lower_bound <= 1e4 * tol && ms.previous_k - k <= 1e-2 * (ms.k - ms.lower_bound);
     if (!near && !settled) return;
-    const Eigen::MatrixXd X = p.with_free_dofs(s.x);
     // A restriction tried before that misses part of the dual's support gives a bound below
     // the optimum: retried (with a wider reach) only once the iterates' own dual objective
     // passes that bound, or their gap falls well below the gap left to it. Otherwise, with
     // the bound in place and k still above it, only the map is tried again.
     const bool retry = ms.active_set_attempts == 0 || info.dobj > ms.active_set_bound + tol ||
                        info.gap < 0.1 * (ms.k - ms.active_set_bound);
+    // The map only helps to finish when the bound is about there (it missed no support).
+    const auto bound_close = [&] { return ms.k - ms.active_set_bound <= 1e2 * tol; };
     if (!retry || ms.active_set_attempts >= 3 || info.iteration == ms.active_set_iteration) {
-      if (ms.active_set_close && ms.active_set_maps < 2 && info.iteration != ms.active_set_iteration)
-        try_map(near_maximum(d, k, 1e3 * std::max(ms.k - ms.iterate_bound, tol), tol), X);
+      if (bound_close() && ms.active_set_maps < 2 && info.iteration != ms.active_set_iteration)
+        try_map(near_maximum(d, k, 1e3 * std::max(ms.k - ms.iterate_bound, tol), tol), p.with_free_dofs(s.x));
       return;
     }
     const double reach = 1e3 * std::max(ms.k - ms.iterate_bound, tol) * std::pow(10.0, ms.active_set_attempts);
@@ -432,6 +415,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       return;
     }
     ms.active_set_elements = chosen.size();
+    const Eigen::MatrixXd X = p.with_free_dofs(s.x);
     const ActiveSetSolve b = active_set_bound(p, chosen, X, effective_bounds, options);
     if (options.verbose)
       std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
@@ -441,17 +425,14 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       ms.lower_bound = b.lower_bound;
       ms.element_multipliers = b.multipliers;
     }
-    // The map only helps to finish when the bound is about there (it missed no support).
-    ms.active_set_close = ms.k - b.lower_bound <= 1e2 * tol;
-    if (ms.active_set_close && ms.k - ms.lower_bound > tol) try_map(chosen, X);
+    if (bound_close() && ms.k - ms.lower_bound > tol) try_map(chosen, X);
   };
 
   analysis.wait();
   ms.outcome = socp::run_ipm(prog, st, settings, [&](const socp::IpmState& s, const socp::Residuals& r,
                                                      const socp::IpmIteration& info) {
     const Eigen::VectorXd& d = r.tail_norms;  // the distortions at s.x
-    double k = has_kmin ? cls.constant_max : -kInf;
-    for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+    const double k = max_free(d);
     if (k < ms.k && bound_ok(d) && equalities_ok(s.x)) {
       ms.k = k;
       ms.x = s.x;
@@ -555,8 +536,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const auto out2 = socp::run_ipm(q, st2, s2, [&](const socp::IpmState&, const socp::Residuals& r,
                                                     const socp::IpmIteration& info) {
       const Eigen::VectorXd& d = r.tail_norms;  // the distortions at s.x
-      double k = has_kmin ? cls.constant_max : -kInf;
-      for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+      const double k = max_free(d);
       IterationRecord rec;
       rec.iteration = offset + info.iteration;
       rec.max_distortion = k;

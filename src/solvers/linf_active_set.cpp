@@ -2,17 +2,13 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 
+#include "strictmin/problem/parts.h"
 #include "strictmin/problem/subproblem.h"
+#include "strictmin/solvers/l2.h"
 
 namespace strictmin {
 namespace {
-
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
 
 // The problem over `elements` only (see the header), in the numbering of its movable
 // vertices (restrict_to_movable): `elements` with their vertices, the rest held at X; in a
@@ -22,29 +18,26 @@ int find_root(std::vector<int>& parent, int v) {
 Subproblem restricted_problem(const Problem& p, const std::vector<int>& elements, const Eigen::MatrixXd& X,
                               bool hold_rim) {
   const int V = p.num_vertices, c = p.corners(), n = p.image_dim;
-  std::vector<char> chosen(p.num_elements(), 0), touched(V, 0), rim(V, 0);
+  std::vector<char> chosen(p.num_elements(), 0), rim(V, 0);
   for (int e : elements) chosen[e] = 1;
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int a = 0; a < c; ++a) (chosen[e] ? touched : rim)[p.elements(e, a)] = 1;
-  if (!hold_rim) std::fill(rim.begin(), rim.end(), 0);
-  // Parts of the restriction (vertices joined through its elements) and their anchors.
-  std::vector<int> parent(V);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (int e : elements)
-    for (int a = 1; a < c; ++a) parent[find_root(parent, p.elements(e, a))] = find_root(parent, p.elements(e, 0));
-  std::vector<char> anchored(V, 0);
-  for (int v = 0; v < V; ++v)
-    if (touched[v] && (p.fixed[v] || rim[v])) anchored[find_root(parent, v)] = 1;
-  std::vector<char> movable(V, 0), floating(V, 0), held_one(V, 0);
+  if (hold_rim)
+    for (int e = 0; e < p.num_elements(); ++e)
+      if (!chosen[e])
+        for (int a = 0; a < c; ++a) rim[p.elements(e, a)] = 1;
+  // Parts of the restriction: those that neither a fixed vertex nor (hold_rim) the rim
+  // anchors float; a translation of such a part changes no distortion, so one vertex of it
+  // is held.
+  const ElementParts parts = element_parts(p, &chosen);
+  std::vector<char> anchor(V, 0), floating_part(parts.count, 0), movable(V, 0), floating(V, 0);
+  for (int v = 0; v < V; ++v) anchor[v] = p.fixed[v] || rim[v];
+  const std::vector<int> held = unanchored_parts(parts, anchor);
+  for (int v : held) floating_part[parts.part[v]] = 1;
   for (int v = 0; v < V; ++v) {
-    if (!touched[v] || p.fixed[v] || rim[v]) continue;
-    const int root = find_root(parent, v);
+    if (parts.part[v] < 0 || anchor[v]) continue;
     movable[v] = 1;
-    if (anchored[root]) continue;
-    floating[v] = 1;  // a translation of the part changes no distortion: hold one vertex
-    if (!held_one[root]) movable[v] = 0;
-    held_one[root] = 1;
+    floating[v] = floating_part[parts.part[v]];
   }
+  for (int v : held) movable[v] = 0;
   Problem q = p;
   if (!hold_rim && p.has_equalities()) {
     const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
@@ -54,7 +47,7 @@ Subproblem restricted_problem(const Problem& p, const std::vector<int>& elements
       bool keep = true;
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it && keep; ++it) {
         const int v = static_cast<int>(it.col()) / n;
-        keep = p.fixed[v] || (touched[v] && !floating[v]);
+        keep = p.fixed[v] || (parts.part[v] >= 0 && !floating[v]);
       }
       if (!keep) continue;
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it; ++it)
@@ -83,7 +76,7 @@ ActiveSetSolve solve_restricted(const Problem& p, const std::vector<int>& elemen
     for (int e : sub.element) kept[e] = 1;
     for (int e : elements)
       if (!kept[e] && !(bounds.size() > 0 && bounds[e] >= 0))
-        constant = std::max(constant, (p.jacobian(e, X) - p.target(e)).norm());
+        constant = std::max(constant, field_deviation(p, X, e));
   }
   LinfOptions o = options;
   o.progress = nullptr;

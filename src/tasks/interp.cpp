@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/problem/parts.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/measures/polar.h"
 #include "strictmin/solvers/l2.h"
@@ -43,11 +44,6 @@ Eigen::MatrixXd as_3d(const Eigen::MatrixXd& V) {
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(V.rows(), 3);
   out.leftCols(V.cols()) = V;
   return out;
-}
-
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
 }
 
 }  // namespace
@@ -115,23 +111,9 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
   logs_ = logs.cols() == 1 ? Eigen::MatrixXd(unwrap_angles(neighbours, logs.col(0))) : unwrap_rotation_vectors(neighbours, logs);
 
   // Connected parts (each gets its own pin).
-  const int V = problem_.num_vertices;
-  std::vector<int> parent(V);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<char> used(V, 0);
-  for (int e = 0; e < E; ++e)
-    for (int j = 0; j < problem_.corners(); ++j) {
-      used[problem_.elements(e, j)] = 1;
-      parent[find_root(parent, problem_.elements(e, j))] = find_root(parent, problem_.elements(e, 0));
-    }
-  component_.assign(V, -1);
-  std::vector<int> id(V, -1);
-  for (int v = 0; v < V; ++v) {
-    if (!used[v]) continue;
-    const int r = find_root(parent, v);
-    if (id[r] < 0) id[r] = num_components_++;
-    component_[v] = id[r];
-  }
+  ElementParts parts = element_parts(problem_);
+  component_ = std::move(parts.part);
+  num_components_ = parts.count;
 }
 
 Eigen::MatrixXd Interpolator::targets_at(double t, Eigen::MatrixXd* shapes) const {

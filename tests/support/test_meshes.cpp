@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "strictmin/mesh/generators.h"
+#include "strictmin/tasks/examples.h"
 
 namespace strictmin::test_support {
 
@@ -24,6 +25,10 @@ Problem random_target_bar() {
   p.fix(h);
   return p;
 }
+
+Problem figure2(int cells, double shift) { return example_problem(make_square_example(cells, shift)); }
+
+int figure2_centre(int cells) { return (cells / 2) * (cells + 1) + cells / 2; }
 
 Problem handle_as_equalities(const Problem& p, int vertex) {
   Problem q = p;

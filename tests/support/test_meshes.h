@@ -9,6 +9,11 @@ namespace strictmin::test_support {
 // fixed, the right end turned by 0.5 rad and moved. Used for the L_p and exact tests.
 Problem random_target_bar();
 
+// The paper's Figure 2 (tasks/examples.h, make_square_example): a cells x cells grid of the
+// unit square, boundary fixed, the centre vertex figure2_centre(cells) moved by `shift` in x.
+Problem figure2(int cells, double shift);
+int figure2_centre(int cells);
+
 // The same problem with one handle replaced by equality rows x_v = its position (two rows in
 // 2D): the vertex becomes free, held by the equalities instead.
 Problem handle_as_equalities(const Problem& p, int vertex);

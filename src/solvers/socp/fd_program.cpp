@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "strictmin/solvers/l2.h"
+
 namespace strictmin::socp {
 
 ElementClasses classify_elements(const Problem& p, const Eigen::VectorXd& bounds) {
@@ -11,8 +13,9 @@ ElementClasses classify_elements(const Problem& p, const Eigen::VectorXd& bounds
     bool constant = true;
     for (int j = 0; j < c; ++j) constant = constant && p.fixed[p.elements(e, j)];
     if (constant) {
+      const double d = field_deviation(p, p.positions, e);
       out.constant_elements.push_back(e);
-      const double d = (p.jacobian(e, p.positions) - p.target(e)).norm();
+      out.constant_distortion.push_back(d);
       if (has_bound(bounds, e)) {
         if (d - bounds[e] > out.constant_excess) {
           out.constant_excess = d - bounds[e];

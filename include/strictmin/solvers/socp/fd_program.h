@@ -16,6 +16,7 @@ struct ElementClasses {
   std::vector<int> free_elements;     // not constant, bounded by k
   std::vector<int> bounded_elements;  // not constant, with a fixed bound k_T
   std::vector<int> constant_elements; // every vertex fixed (bounded or not)
+  std::vector<double> constant_distortion;  // theirs, in the same order
   // Largest distortion of a constant free element: a lower bound on k (-inf if none).
   double constant_max = -std::numeric_limits<double>::infinity();
   // Largest excess D_T - k_T of a constant bounded element, and which (-1 if none).
