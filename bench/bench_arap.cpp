@@ -96,7 +96,7 @@ void run(benchmark::State& state, const Case& c, Method method, int cap) {
   for (auto _ : state) r = local_global(c.problem, c.start, solver, o);
   int reached = -1;
   for (const auto& h : r.history)
-    if (h.gap <= 1e-4) {
+    if (h.relative_change <= 1e-4) {
       reached = h.iteration;
       break;
     }

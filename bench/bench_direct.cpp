@@ -26,13 +26,14 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
     // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
     if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
     // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
-    if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) options.linf.verbose = std::atoi(v);
+    LinfOptions linf;
+    if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) linf.verbose = std::atoi(v);
     options.progress = [&](const StrictStep& s) {
       last = s;
       std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
                    s.k, s.fixed_total, s.fixed_now, s.level_iterations, s.level_free_vertices, s.time_s);
     };
-    r = solve_direct(p, options);
+    r = solve_direct(p, options, linf);
     benchmark::DoNotOptimize(r.positions.data());
   }
   state.counters["triangles"] = p.num_elements();

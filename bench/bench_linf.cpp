@@ -42,7 +42,7 @@ LinfOptions bench_options() {
   if (o.verbose)
     o.progress = [](const IterationRecord& r) {
       std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,
-                   r.lower_bound, r.gap, r.time_s);
+                   r.lower_bound, r.certified_gap, r.time_s);
     };
   return o;
 }

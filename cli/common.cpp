@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
+#include <sstream>
 
 #include "strictmin/io/atomic_file.h"
 
@@ -18,7 +20,48 @@ void add_output_options(CLI::App& cmd, OutputOptions& out) {
   cmd.add_option("--distortion", out.distortion, "Write each element's distortion to FILE, one per line, input order")
       ->type_name("FILE");
   cmd.add_flag("--quiet,-q", out.quiet, "No progress messages on stderr");
-  cmd.add_option("--threads", out.threads, "Number of threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd.add_option("--threads", out.threads, "Number of threads (default 0: all cores)")->check(at_least(0));
+}
+
+namespace {
+CLI::Validator number_check(std::function<bool(double)> ok, const std::string& range) {
+  return CLI::Validator(
+      [ok, range](std::string& text) -> std::string {
+        double v = 0;
+        size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (used != text.size()) return "'" + text + "' is not a number";
+        if (!std::isfinite(v) || !ok(v)) return "value " + text + " is out of range: must be " + range;
+        return "";
+      },
+      range);
+}
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+CLI::Validator greater_than(double low) {
+  return number_check([low](double v) { return v > low; }, "> " + fmt(low));
+}
+CLI::Validator at_least(double low) {
+  return number_check([low](double v) { return v >= low; }, ">= " + fmt(low));
+}
+CLI::Validator open_range(double low, double high) {
+  return number_check([low, high](double v) { return v > low && v < high; }, "in (" + fmt(low) + ", " + fmt(high) + ")");
+}
+CLI::Validator less_than(double high) {
+  return number_check([high](double v) { return v < high; }, "< " + fmt(high));
+}
+CLI::Validator half_open_range(double low, double high) {
+  return number_check([low, high](double v) { return v >= low && v < high; },
+                      "in [" + fmt(low) + ", " + fmt(high) + ")");
 }
 
 std::shared_ptr<void> limit_threads(int threads) {
@@ -47,6 +90,30 @@ void write_outputs(const OutputOptions& out, const nlohmann::json& summary, cons
   }
 }
 
+void print_iteration(const std::string& label, const IterationRecord& r) {
+  std::string line = label;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, " %3d  max %.10g", r.iteration, r.max_distortion);
+  line += buf;
+  auto field = [&](const char* name, double v, const char* fmt) {
+    if (std::isnan(v)) return;
+    std::snprintf(buf, sizeof buf, fmt, name, v);
+    line += buf;
+  };
+  field("lower bound", r.lower_bound, "  %s %.10g");
+  field("gap", r.certified_gap, "  %s %.2e");
+  field("relative change", r.relative_change, "  %s %.2e");
+  field("largest move", r.largest_move, "  %s %.2e");
+  field("decrement", r.decrement, "  %s %.2e");
+  std::snprintf(buf, sizeof buf, "  %.2f s", r.time_s);
+  line += buf;
+  std::cerr << line << std::endl;
+}
+
+void print_local_global_progress(const IterationRecord& r, const std::string& indent) {
+  print_iteration(indent + "local-global iter", r);
+}
+
 void progress(const OutputOptions& out, const std::string& line) {
   if (!out.quiet) std::cerr << line << std::endl;
 }
@@ -63,12 +130,19 @@ void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
 
 void add_status_summary(nlohmann::json& s, const Result& r) {
   s["status"] = status_name(r.status);
+  s["usable"] = r.usable();
+  s["stop_reason"] = r.message;
   if (!r.message.empty()) s["message"] = r.message;
 }
 
 void add_local_global_summary(nlohmann::json& s, const Result& r) {
   s["local_global_iterations"] = r.iterations;
-  s["stop_reason"] = r.message;
+  // The global steps' certified bound is for field deviation with their rotations fixed, not
+  // for the ARAP / ASAP measure reported: it moves to its own key, lower_bound is null.
+  if (s.contains("lower_bound")) {
+    s["fd_step_lower_bound"] = s["lower_bound"];
+    s["lower_bound"] = nullptr;
+  }
   nlohmann::json history = nlohmann::json::array();
   for (const auto& h : r.history) history.push_back({{"iteration", h.iteration}, {"max", h.max_distortion}});
   s["history"] = history;

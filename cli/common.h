@@ -27,6 +27,13 @@ struct OutputOptions {
 
 void add_output_options(CLI::App& cmd, OutputOptions& out);
 
+// Range validators for numeric flags (CLI11 names the flag in its message; NaN fails each).
+CLI::Validator greater_than(double low);         // (low, inf)
+CLI::Validator at_least(double low);             // [low, inf)
+CLI::Validator open_range(double low, double high);  // (low, high)
+CLI::Validator half_open_range(double low, double high);  // [low, high)
+CLI::Validator less_than(double high);           // (-inf, high)
+
 // Limits TBB and OpenBLAS to `threads` (0: leave the defaults). Keep the returned object alive.
 std::shared_ptr<void> limit_threads(int threads);
 
@@ -46,6 +53,11 @@ void add_status_summary(nlohmann::json& s, const Result& r);
 
 // arap / asap: local_global_iterations, stop_reason and history (the maximum per iteration).
 void add_local_global_summary(nlohmann::json& s, const Result& r);
+
+// One progress line on stderr for an iteration record: the label, the iteration, the
+// maximum, then only the fields that apply to the solver (not NaN), the elapsed time.
+void print_iteration(const std::string& label, const IterationRecord& r);
+void print_local_global_progress(const IterationRecord& r, const std::string& indent);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);

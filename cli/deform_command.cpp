@@ -38,8 +38,7 @@ int run_deform(const DeformArgs& a) {
   options.local_global.relative_change = a.lg_tolerance;
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "local-global iter %3d  max %.8g  relative change %.2e  %.2f s\n", r.iteration,
-                   r.max_distortion, r.gap, r.time_s);
+      print_local_global_progress(r, "");
     };
 
   Mesh mesh;
@@ -114,11 +113,13 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method)")
       ->capture_default_str();
   cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
-  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")
-      ->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_option("--lg-tolerance", args->lg_tolerance,
-                  "arap/asap: stop when the maximum changes by less than this (relative)")
-      ->capture_default_str();
+                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
   cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);

@@ -173,10 +173,10 @@ void add_demo_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--scale", args->scale,
                   "The distortion shown red (dark blue is 0); default: per example, 1.5 times its least maximum "
                   "distortion, rounded up (the paper uses 0.6)")
-      ->check(CLI::PositiveNumber);
+      ->check(greater_than(0));
   cmd->add_flag("--quiet,-q", args->output.quiet, "No progress messages on stderr");
   cmd->add_option("--threads", args->output.threads, "Number of threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(at_least(0));
   cmd->callback([args, &exit_code] { exit_code = run_demo(*args); });
 }
 

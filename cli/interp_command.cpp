@@ -96,8 +96,7 @@ int run_interp(const InterpArgs& a) {
     throw InputError("--distortion writes one frame: give a single --t value with it");
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "  local-global iter %3d  max %.8g  relative change %.2e  %.2f s\n", r.iteration,
-                   r.max_distortion, r.gap, r.time_s);
+      print_local_global_progress(r, "  ");
     };
 
   std::vector<std::string> warnings;
@@ -138,7 +137,7 @@ int run_interp(const InterpArgs& a) {
       write_mesh(path, f.mesh);
     }
     if (!f.result.ok()) {
-      worst = f.result.status;
+      worst = worse_status(worst, f.result.status);
       progress(a.out, "warning: t = " + std::to_string(t) + ": " + status_name(f.result.status) + ": " + f.result.message);
     }
     nlohmann::json j;
@@ -188,10 +187,12 @@ void add_interp_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations,
                   "Local-global iteration cap (0: one solve with the interpolated rotations, no local steps)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(0));
   cmd->add_option("--lg-tolerance", args->lg_tolerance,
                   "Stop when the maximum changes by less than this (relative)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(0));
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   // Frames are close to their blended shapes: an automatic colour scale by default (a fixed

@@ -67,8 +67,7 @@ int run_param(ParamArgs a) {
   options.local_global.relative_change = a.lg_tolerance;
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "local-global iter %3d  max %.8g  relative change %.2e  %.2f s\n", r.iteration,
-                   r.max_distortion, r.gap, r.time_s);
+      print_local_global_progress(r, "");
     };
   if (a.mesh.empty()) throw InputError("param needs a mesh file (a triangle surface with one boundary loop)");
   std::vector<std::string> warnings;
@@ -124,11 +123,13 @@ void add_param_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--measure", args->measure,
                   "arap or asap (local-global iterations around the method), fd (frames from the starting map)")
       ->capture_default_str();
-  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")
-      ->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_option("--lg-tolerance", args->lg_tolerance,
-                  "arap/asap: stop when the maximum changes by less than this (relative)")
-      ->capture_default_str();
+                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
   add_solver_options(*cmd, args->solver);
   cmd->get_option("--method")
       ->description("tutte or lscm (the starting map itself), l2 (Liu et al. 2008 ARAP), linf (least maximum), "

@@ -288,7 +288,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--run", args->runs, "A result's summary JSON (repeat for each method)")->type_name("SUMMARY");
   cmd->add_option("--scale", args->scale, "The distortion shown red (dark blue is 0)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(greater_than(0));
   cmd->add_option("--title", args->title, "Title of the page")->capture_default_str();
   cmd->add_flag("--quiet,-q", args->out.quiet, "No warnings on stderr");
   cmd->callback([args, &exit_code] { exit_code = run_report(*args); });

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "common.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/report/html_report.h"
@@ -18,7 +19,7 @@ void add_report_options(CLI::App& cmd, ReportArgs& a) {
                  "Report: the distortion shown red (dark blue is 0); 0: automatic, 1.5 times the least maximum "
                  "rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(at_least(0));
 }
 
 namespace {

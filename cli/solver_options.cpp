@@ -12,35 +12,50 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
                  "lp / irls (the baselines)")
       ->capture_default_str();
   auto* g = cmd.add_option_group("Method options");
-  g->add_option("--gap", a.gap, "linf: stop at this relative duality gap")->capture_default_str();
-  g->add_option("--max-iterations", a.max_iterations, "linf: interior-point iteration cap")->capture_default_str();
+  g->add_option("--gap", a.gap, "linf: stop at this certified relative gap, in (0, 1)")
+      ->capture_default_str()
+      ->check(open_range(0, 1));
+  g->add_option("--max-iterations", a.max_iterations, "linf: interior-point iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
   g->add_flag("--linf-min-l2", a.linf_min_l2,
               "linf: among the L-infinity optima, return the one with the least L2 distortion (a second solve)");
-  g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(CLI::Range(2.0, 1e6));
-  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves")->capture_default_str();
-  g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices")->capture_default_str();
-  g->add_option("--move-tolerance", a.move_tolerance, "relax: stop when no vertex moves more than this")
-      ->capture_default_str();
+  g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(at_least(2));
+  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves (>= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
+  g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices (>= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
+  g->add_option("--move-tolerance", a.move_tolerance,
+                "relax: stop when no vertex moves more than this (>= 0; 0: run every sweep)")
+      ->capture_default_str()
+      ->check(at_least(0));
   g->add_option("--accept-tolerance", a.accept_tolerance,
                 "relax: a move must improve its ring in the strict order with values within this fraction of "
                 "the ring maximum counted as equal (0: any decrease of the ring maximum)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(half_open_range(0, 1));
   g->add_option("--init", a.init, "relax: start from l2, lp, irls or linf")->capture_default_str();
-  g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum")
-      ->capture_default_str();
-  g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this")->capture_default_str();
+  g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum (> 0)")
+      ->capture_default_str()
+      ->check(greater_than(0));
+  g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this (>= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
   g->add_option("--level-gap", a.level_gap,
                 "direct: relative gap at which the levels after the first stop (default -1: delta-k / 100; the "
-                "first level uses --gap)")
-      ->capture_default_str();
+                "first level uses --gap; below 1)")
+      ->capture_default_str()
+      ->check(less_than(1));
   g->add_option("--moving-rings", a.moving_rings,
                 "direct: levels after the first move only the vertices within this many rings of the elements "
                 "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this")
-      ->capture_default_str();
+      ->check(at_least(0));
+  g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
 }
 
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {
@@ -64,25 +79,12 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.direct.k_min = a.k_min;
   o.direct.level_gap = a.level_gap;
   o.direct.moving_rings = a.moving_rings;
-  o.direct.linf = o.linf;
   o.exact.max_elements = a.exact_max_elements;
-  o.exact.linf = o.linf;
   if (!out.quiet) {
-    o.linf.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "  linf  iter %3d  k %.10g  lower bound %.10g  gap %.2e  %.2f s\n", r.iteration,
-                   r.max_distortion, r.lower_bound, r.gap, r.time_s);
-    };
-    o.lp.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "  lp    iter %3d  max %.8g  decrement %.2e  %.2f s\n", r.iteration, r.max_distortion,
-                   r.gap, r.time_s);
-    };
-    o.irls.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "  irls  iter %3d  max %.8g  %.2f s\n", r.iteration, r.max_distortion, r.time_s);
-    };
-    o.relax.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "  relax sweep %3d  max %.8g  largest move %.2e  %.2f s\n", r.iteration, r.max_distortion,
-                   r.gap, r.time_s);
-    };
+    o.linf.progress = [](const IterationRecord& r) { print_iteration("  linf  iter", r); };
+    o.lp.progress = [](const IterationRecord& r) { print_iteration("  lp    iter", r); };
+    o.irls.progress = [](const IterationRecord& r) { print_iteration("  irls  iter", r); };
+    o.relax.progress = [](const IterationRecord& r) { print_iteration("  relax sweep", r); };
     auto strict_progress = [](const StrictStep& s) {
       std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d", s.step, s.k, s.fixed_now,
                    s.fixed_total, s.solves);

@@ -178,8 +178,10 @@ void lowers_the_maximum(const Problem& p, double factor) {
   RelaxOptions options;
   options.sweeps = 50;
   int calls = 0;
-  options.progress = [&](const IterationRecord& r) { EXPECT_EQ(r.iteration, ++calls); };
-  options.largest_move = [&](int, double move) { moves.push_back(move); };
+  options.progress = [&](const IterationRecord& r) {
+    EXPECT_EQ(r.iteration, ++calls);
+    moves.push_back(r.largest_move);
+  };
   const Result r = relax(p, l2.positions, options);
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.iterations, 50);
@@ -412,7 +414,7 @@ TEST(Relax, StopsOnTheMoveTolerance) {
   options.sweeps = 500;
   options.move_tolerance = 1e-3;
   double last_move = -1;
-  options.largest_move = [&](int, double move) { last_move = move; };
+  options.progress = [&](const IterationRecord& r) { last_move = r.largest_move; };
   const Result r = relax(p, solve_l2(p).positions, options);
   EXPECT_LT(r.iterations, 500);
   EXPECT_LT(last_move, 1e-3);

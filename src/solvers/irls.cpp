@@ -3,10 +3,18 @@
 #include <chrono>
 
 #include "strictmin/solvers/l2.h"
+#include "strictmin/io/input_error.h"
+#include "option_check.h"
 
 namespace strictmin {
 
+bool IrlsOptions::is_valid(std::string* why) const {
+  return OptionCheck(why).at_least("iterations", iterations, 0).ok();
+}
+
 Result solve_irls(const Problem& p, const IrlsOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("irls: " + why);
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   Result r;
@@ -28,7 +36,8 @@ Result solve_irls(const Problem& p, const IrlsOptions& options) {
     w /= total;
     w = w.cwiseMax(1e-12 * w.maxCoeff());
     if (!solver.reweight(p, p.weights.cwiseProduct(w))) {
-      r.status = SolveStatus::NumericalError;
+      // The last solve's map stays: usable, but the reweighting stopped.
+      r.status = SolveStatus::Stalled;
       r.message = "IRLS: " + solver.message();
       break;
     }
@@ -42,6 +51,9 @@ Result solve_irls(const Problem& p, const IrlsOptions& options) {
     r.history.push_back(rec);
     if (options.progress) options.progress(rec);
   }
+  if (r.status == SolveStatus::Solved)
+    r.message = "ran " + std::to_string(r.iterations) + " of the requested " + std::to_string(options.iterations) +
+                " reweighted solves" + (r.iterations < options.iterations ? " (every element at zero distortion)" : "");
   r.time_s = elapsed();
   return r;
 }

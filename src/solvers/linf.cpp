@@ -25,6 +25,7 @@
 #include "strictmin/solvers/socp/kkt.h"
 #include "strictmin/solvers/socp/fd_program.h"
 #include "strictmin/solvers/socp/ipm.h"
+#include "option_check.h"
 
 namespace strictmin {
 namespace {
@@ -124,7 +125,7 @@ Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen
   out.X = X0;
   for (int v = 0; v < p.num_vertices; ++v)
     if (vertex_dof[v] >= 0) out.X.row(v) = best_x.segment(vertex_dof[v], n).transpose();
-  if (best_lb > tol || (outcome.status == socp::IpmStatus::Converged && best_t > tol)) {
+  if (best_lb > tol || (outcome.status == socp::IpmStatus::MonitorStopped && best_t > tol)) {
     out.feasible = false;
     out.message = "the fixed bounds cannot all be met: some bounded element exceeds its bound k_T by at least " +
                   format(std::max(best_lb, 0.0)) + " (best map found: " + format(best_t) + ")";
@@ -156,8 +157,25 @@ struct MainSolve {
 
 }  // namespace
 
+bool LinfOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .below_one("gap_tolerance", gap_tolerance)
+      .below_one("feasibility_tolerance", feasibility_tolerance)
+      .at_least("max_iterations", max_iterations, 1)
+      .below_one("infeasibility_tolerance", infeasibility_tolerance)
+      .positive("l2_slack", l2_slack)
+      .below_one("acceptable_gap_tolerance", acceptable_gap_tolerance)
+      .below_one("step_fraction", step_fraction)
+      .non_negative("regularization", regularization)
+      .at_least("refinement_steps", refinement_steps, 0)
+      .between("verbose", verbose, 0, 2)
+      .ok();
+}
+
 Result solve_linf(const Problem& p, const LinfOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("linf: " + why);
   const int E = p.num_elements(), n = p.image_dim;
   if (options.element_bounds.size() != 0 && options.element_bounds.size() != E)
     throw InputError("element_bounds has " + std::to_string(options.element_bounds.size()) + " entries, the problem has " +
@@ -192,7 +210,13 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     result.iterations = 0;
     const double k = cls.constant_max;
     result.lower_bound = k;
-    result.history.push_back({0, k, k, 0.0, seconds_since(t0)});
+    IterationRecord rec;
+    rec.max_distortion = k;
+    rec.lower_bound = k;
+    rec.certified_gap = 0.0;
+    rec.time_s = seconds_since(t0);
+    result.history.push_back(rec);
+    result.message = "nothing to optimise: every vertex is fixed";
     return finish(p.positions);
   }
 
@@ -456,7 +480,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     rec.iteration = info.iteration;
     rec.max_distortion = std::min(k, ms.k);  // the active-set map may be better than the iterate
     rec.lower_bound = ms.lower_bound;
-    rec.gap = rec.max_distortion - ms.lower_bound;
+    rec.certified_gap = (rec.max_distortion - ms.lower_bound) / std::max(1.0, std::abs(rec.max_distortion));
     rec.time_s = seconds_since(t0);
     result.history.push_back(rec);
     if (options.progress) options.progress(rec);
@@ -482,10 +506,6 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     return false;
   }, normal_equations.get());
   if (!ms.last_certified) certify_iterate(st);
-  if (ms.stalled) {
-    ms.outcome.status = socp::IpmStatus::NumericalError;
-    ms.outcome.message = "the certified gap stopped improving (the Newton systems are too ill-conditioned)";
-  }
   total_iterations += ms.outcome.iterations;
   result.iterations = total_iterations;
   result.lower_bound = std::min(ms.lower_bound, ms.k);
@@ -497,19 +517,33 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   }
   const double gap = ms.k - ms.lower_bound;
   const double rel_gap = std::isfinite(gap) ? gap / std::max(1.0, std::abs(ms.k)) : kInf;
-  switch (ms.outcome.status) {
-    case socp::IpmStatus::Converged: result.status = SolveStatus::Solved; break;
-    case socp::IpmStatus::MaxIterations: result.status = SolveStatus::MaxIterations; break;
-    default:
-      result.status = rel_gap <= options.acceptable_gap_tolerance ? SolveStatus::Solved : SolveStatus::NumericalError;
-      break;
-  }
-  if (ms.outcome.status != socp::IpmStatus::Converged)
-    result.message = (result.status == SolveStatus::Solved ? "reduced accuracy: " : "") + ms.outcome.message +
-                     " (k = " + format(ms.k) + ", certified lower bound " + format(ms.lower_bound) +
-                     ", relative gap " + format(rel_gap) + ")";
-  else if (relax > 0)
-    result.message = "fixed bounds relaxed by " + format(relax) + " (missed by that much at best)";
+  // The status, decided in one place from what the solve knows (result.h).
+  StopState stop;
+  stop.criterion_met = rel_gap <= options.gap_tolerance;
+  stop.within_acceptable = rel_gap <= options.acceptable_gap_tolerance;
+  stop.cap_reached = ms.outcome.status == socp::IpmStatus::MaxIterations;
+  const bool ipm_failed = ms.outcome.status == socp::IpmStatus::NumericalError;
+  // A stall or a failed Newton system still leaves the best map found, which meets every
+  // constraint: stalled. Only without any such map is it a numerical error.
+  stop.stalled = ms.stalled || ipm_failed;
+  stop.failed = ipm_failed && !std::isfinite(ms.k);
+  result.status = decide_status(stop);
+  const std::string figures = "k = " + format(ms.k) + ", certified lower bound " + format(ms.lower_bound) +
+                              ", relative gap " + format(rel_gap);
+  if (result.status == SolveStatus::Solved)
+    result.message = "converged: certified relative gap within " + format(options.gap_tolerance) + " (" + figures + ")";
+  else if (result.status == SolveStatus::AlmostSolved)
+    result.message = "reduced accuracy: certified relative gap within " + format(options.acceptable_gap_tolerance) +
+                     " but not " + format(options.gap_tolerance) + "; " +
+                     (ms.stalled ? std::string("the certified gap stopped improving (the Newton systems are too "
+                                               "ill-conditioned)")
+                                 : ms.outcome.message) +
+                     " (" + figures + ")";
+  else if (ms.stalled)
+    result.message = "the certified gap stopped improving (the Newton systems are too ill-conditioned) (" + figures + ")";
+  else
+    result.message = ms.outcome.message + " (" + figures + ")";
+  if (relax > 0) result.message += "; fixed bounds relaxed by " + format(relax) + " (missed by that much at best)";
   if (!std::isfinite(ms.k)) {
     // No iterate met the bounds: return the start (which meets them up to `relax`).
     ms.x = start.x;
@@ -541,18 +575,18 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
       rec.iteration = offset + info.iteration;
       rec.max_distortion = k;
       rec.lower_bound = result.lower_bound;
-      rec.gap = k - result.lower_bound;
+      rec.certified_gap = (k - result.lower_bound) / std::max(1.0, std::abs(k));
       rec.time_s = seconds_since(t0);
       result.history.push_back(rec);
       if (options.progress) options.progress(rec);
       return socp::default_converged(r, s2);
     });
     result.iterations += out2.iterations;
-    if (out2.status == socp::IpmStatus::Converged) {
+    if (out2.status == socp::IpmStatus::MonitorStopped) {
       X = p.with_free_dofs(st2.x);
     } else {
-      result.status = out2.status == socp::IpmStatus::MaxIterations ? SolveStatus::MaxIterations
-                                                                     : SolveStatus::NumericalError;
+      // The L-infinity map stays: a usable result whose second criterion was not met.
+      result.status = out2.status == socp::IpmStatus::MaxIterations ? SolveStatus::MaxIterations : SolveStatus::Stalled;
       result.message = "minimize_l2_among_optimal: " + out2.message + " (the L-infinity map is returned)";
     }
   }

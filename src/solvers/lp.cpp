@@ -8,6 +8,8 @@
 #include "strictmin/solvers/element_assembly.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/sparse_cholesky.h"
+#include "strictmin/io/input_error.h"
+#include "option_check.h"
 
 namespace strictmin {
 namespace {
@@ -21,7 +23,17 @@ double lp_energy(const Eigen::VectorXd& r, const Eigen::VectorXd& weights, int n
 
 }  // namespace
 
+bool LpOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .at_least("p", p, 2)
+      .at_least("max_iterations", max_iterations, 1)
+      .positive("tolerance", tolerance)
+      .ok();
+}
+
 Result solve_lp(const Problem& p, const LpOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("lp: " + why);
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   Result r = solve_l2(p);
@@ -70,8 +82,9 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
       for (int i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
       if (!cholesky.analyzed()) cholesky.analyze(H);
       if (!cholesky.factorize(H)) {
-        r.status = SolveStatus::NumericalError;
-        r.message = "L_p: the Newton system is not positive definite";
+        // The last accepted iterate stays: a usable map that stopped improving.
+        r.status = SolveStatus::Stalled;
+        r.message = "L_p: the Newton system is not positive definite at p = " + std::to_string(q);
         converged = false;
         break;
       }
@@ -91,7 +104,7 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
       IterationRecord rec;
       rec.iteration = iteration;
       for (int e = 0; e < p.num_elements(); ++e) rec.max_distortion = std::max(rec.max_distortion, res.segment(e * nm, nm).norm());
-      rec.gap = -slope / 2 / std::max(f, 1e-300);
+      rec.decrement = -slope / 2 / std::max(f, 1e-300);
       rec.time_s = elapsed();
       r.history.push_back(rec);
       if (options.progress) options.progress(rec);
@@ -105,6 +118,7 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
       break;
     }
   }
+  if (converged) r.message = "converged: Newton decrement within tolerance at every p up to " + std::to_string(options.p);
   r.positions = p.with_free_dofs(x);
   r.distortion = field_deviation(p, r.positions);
   r.iterations = iteration;

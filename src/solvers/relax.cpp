@@ -8,6 +8,7 @@
 #include "relax_sweep.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
+#include "option_check.h"
 
 namespace strictmin {
 
@@ -36,7 +37,18 @@ int RelaxSweeper::num_colours() const { return impl_->colouring.num_colours; }
 
 const VertexColouring& RelaxSweeper::colouring() const { return impl_->colouring; }
 
+bool RelaxOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .at_least("sweeps", sweeps, 0)
+      .non_negative("move_tolerance", move_tolerance)
+      .that(accept_tolerance >= 0 && accept_tolerance < 1,
+            "accept_tolerance must be in [0, 1) (got " + std::to_string(accept_tolerance) + ")")
+      .ok();
+}
+
 Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("relax: " + why);
   const auto t0 = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   if (initial.rows() != problem.num_vertices || initial.cols() != problem.image_dim)
@@ -58,21 +70,37 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     return result;
   }
   Deviations dev;
+  bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {
     IterationRecord record;
     record.iteration = s;
     if (dev.age >= kRefreshInterval) dev.age = -1;
     const double move = sweep_any(data, problem, X, dev, options.accept_tolerance, &record.max_distortion);
+    record.largest_move = move;
     record.time_s = elapsed();
     result.history.push_back(record);
     result.iterations = s;
     if (options.progress) options.progress(record);
-    if (options.largest_move) options.largest_move(s, move);
-    if (move < options.move_tolerance) break;
+    if (move < options.move_tolerance) {
+      moves_settled = true;
+      break;
+    }
   }
   result.positions = std::move(X);
   result.distortion = field_deviation(problem, result.positions);
-  result.status = SolveStatus::Solved;
+  // The criterion: the requested number of sweeps, or, with a move tolerance, no vertex moving
+  // more than it (then running out of sweeps first is the cap).
+  StopState stop;
+  stop.criterion_met = options.move_tolerance > 0 ? moves_settled : true;
+  stop.cap_reached = !stop.criterion_met;
+  result.status = decide_status(stop);
+  if (moves_settled)
+    result.message = "converged: no vertex moved more than the move tolerance in sweep " + std::to_string(result.iterations);
+  else if (stop.criterion_met)
+    result.message = "ran the requested " + std::to_string(options.sweeps) + " sweeps";
+  else
+    result.message = "reached the sweep cap (" + std::to_string(options.sweeps) +
+                     ") with vertices still moving more than the move tolerance";
   result.time_s = elapsed();
   return result;
 }

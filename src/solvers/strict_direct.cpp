@@ -8,6 +8,8 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/solvers/timing.h"
+#include "option_check.h"
+#include "strictmin/io/input_error.h"
 
 namespace strictmin {
 namespace {
@@ -54,7 +56,7 @@ Result solve_restricted_level(const Problem& p, const std::vector<char>& movable
 struct ShortLevels {
   explicit ShortLevels(double reduced_accuracy) : reduced_accuracy_gap(reduced_accuracy) {}
   double reduced_accuracy_gap;  // above this certified gap a level is of reduced accuracy
-  int numerical = 0, iteration_limit = 0, reduced = 0;
+  int stalled = 0, iteration_limit = 0, reduced = 0;
   int worst_step = 0;
   double worst_gap = 0, worst_k = 0;
   SolveStatus worst_status = SolveStatus::Solved;
@@ -66,7 +68,7 @@ struct ShortLevels {
     if (r.status == SolveStatus::MaxIterations)
       ++iteration_limit;
     else
-      ++numerical;
+      ++stalled;
     if (first.empty()) first = "level " + std::to_string(step) + ": " + r.message;
     if (gap > reduced_accuracy_gap) ++reduced;
     if (gap > worst_gap || worst_step == 0) {
@@ -80,13 +82,13 @@ struct ShortLevels {
   // worst one: the map is complete, but that level is known only to within its gap).
   SolveStatus status() const { return reduced > 0 ? worst_status : SolveStatus::Solved; }
   std::string message(int levels) const {
-    const int count = numerical + iteration_limit;
+    const int count = stalled + iteration_limit;
     if (count == 0) return "";
     char worst[160];
     std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap, worst_step,
                   worst_k);
     return std::to_string(count) + " of " + std::to_string(levels) + " levels stopped short of their tolerance (" +
-           std::to_string(numerical) + " numerical-error, " + std::to_string(iteration_limit) +
+           std::to_string(stalled) + " stalled or almost-solved, " + std::to_string(iteration_limit) +
            " max-iterations) and were used; " + std::to_string(reduced) +
            " of them with reduced accuracy (certified gap above delta_k / 4); " + worst + "; first: " + first;
   }
@@ -94,19 +96,32 @@ struct ShortLevels {
 
 }  // namespace
 
-Result solve_direct(const Problem& p, const DirectOptions& options) {
+bool DirectOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .positive("delta_k", delta_k)
+      .non_negative("k_min", k_min)
+      .at_least("max_steps", max_steps, 1)
+      .that(level_gap < 1, "level_gap must be < 1 (negative: delta_k / 100)")
+      .at_least("moving_rings", moving_rings, 0)
+      .ok();
+}
+
+Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOptions& linf_options) {
   const auto t0 = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("direct: " + why);
+  if (!linf_options.is_valid(&why)) throw InputError("linf: " + why);
   const std::vector<char> movable = movable_elements(p);
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
   int fixed_total = 0, free_left = 0;
   for (char m : movable) free_left += m;
-  LinfOptions linf = options.linf;
+  LinfOptions linf = linf_options;
   linf.progress = nullptr;
   Result out;
   ShortLevels short_levels(0.25 * options.delta_k);
   std::string stop_message;  // a level that ended the run
   double k = INFINITY;
-  out.positions = options.start.size() ? options.start : p.positions;
+  out.positions = p.positions;
   Problem level = p;
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     linf.element_bounds = bounds;
@@ -143,8 +158,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       // Use it and go on; the summary says how many and how far off. Stop on a map that is
       // not finite and on infeasible (the bounds were met by the previous map: only round-off
       // can say so, and its map is no witness).
-      const bool usable = (r.status == SolveStatus::NumericalError || r.status == SolveStatus::MaxIterations) &&
-                          r.positions.allFinite() && r.distortion.size() == p.num_elements() &&
+      const bool usable = r.usable() && r.distortion.size() == p.num_elements() &&
                           r.distortion.allFinite() && std::isfinite(reached);
       if (!usable) {
         out.status = r.status;
@@ -181,7 +195,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
     rec.iteration = step;
     rec.max_distortion = k;
     rec.lower_bound = r.lower_bound;
-    rec.gap = gap;
+    rec.certified_gap = gap;
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
     if (options.progress) {
@@ -197,7 +211,19 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
       options.progress(info);
     }
   }
-  if (out.status == SolveStatus::Solved) out.status = short_levels.status();
+  // Direct's criterion: every element fixed or the level below k_min, every level certified
+  // well enough to place its band (ShortLevels). Leaving the loop at max_steps is the cap.
+  const bool finished = free_left == 0 || k <= options.k_min;
+  if (out.status == SolveStatus::Solved && !finished) {
+    out.status = SolveStatus::MaxIterations;
+    stop_message = "reached the level cap (" + std::to_string(options.max_steps) + ") at k = " + std::to_string(k) +
+                   " above k_min with " + std::to_string(free_left) + " elements still free";
+  }
+  if (out.status == SolveStatus::Solved) {
+    out.status = short_levels.status();
+    stop_message = free_left == 0 ? "every element fixed after " + std::to_string(out.iterations) + " levels"
+                                  : "the level fell to k_min after " + std::to_string(out.iterations) + " levels";
+  }
   out.message = stop_message;
   const std::string levels = short_levels.message(out.iterations);
   if (!levels.empty()) out.message += (out.message.empty() ? "" : "; ") + levels;
@@ -207,7 +233,8 @@ Result solve_direct(const Problem& p, const DirectOptions& options) {
 
 double worst_level_gap(const Result& direct) {
   double worst = 0;
-  for (const IterationRecord& rec : direct.history) worst = std::isnan(rec.gap) ? INFINITY : std::max(worst, rec.gap);
+  for (const IterationRecord& rec : direct.history)
+    worst = std::isnan(rec.certified_gap) ? INFINITY : std::max(worst, rec.certified_gap);
   return worst;
 }
 

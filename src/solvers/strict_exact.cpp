@@ -28,9 +28,18 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/solvers/timing.h"
+#include "option_check.h"
 
 namespace strictmin {
-Result solve_exact(const Problem& p, const ExactOptions& options) {
+
+bool ExactOptions::is_valid(std::string* why) const {
+  return OptionCheck(why).positive("tolerance", tolerance).at_least("max_elements", max_elements, 1).ok();
+}
+
+Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOptions& linf_options) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("exact: " + why);
+  if (!linf_options.is_valid(&why)) throw InputError("linf: " + why);
   if (p.num_elements() > options.max_elements)
     throw InputError("the exact strict minimizer needs up to one L-infinity solve per element and level; " +
                      std::to_string(p.num_elements()) + " elements is above its limit of " +
@@ -44,7 +53,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options) {
   }
   const double tol = options.tolerance;
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
-  LinfOptions linf = options.linf;
+  LinfOptions linf = linf_options;
   linf.progress = nullptr;
   Result out;
   int solves = 0, fixed_total = 0;

@@ -2,6 +2,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
+#include "../solvers/option_check.h"
 
 namespace strictmin {
 namespace {
@@ -36,26 +37,41 @@ std::string method_list() {
   return out;
 }
 
+bool SolverOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .nested("linf", linf)
+      .nested("lp", lp)
+      .nested("irls", irls)
+      .nested("relax", relax)
+      .that(relax_init != Method::Relax && relax_init != Method::Direct && relax_init != Method::Exact,
+            "relax_init must be l2, lp, irls or linf (got " + method_name(relax_init) + ")")
+      .nested("direct", direct)
+      .nested("exact", exact)
+      .ok();
+}
+
 Result run_method(const Problem& p, const SolverOptions& o) {
+  std::string why;
+  if (!o.is_valid(&why)) throw InputError("invalid solver options: " + why);
   switch (o.method) {
     case Method::L2: return solve_l2(p);
     case Method::Linf: return solve_linf(p, o.linf);
     case Method::Lp: return solve_lp(p, o.lp);
     case Method::Irls: return solve_irls(p, o.irls);
-    case Method::Direct: return solve_direct(p, o.direct);
-    case Method::Exact: return solve_exact(p, o.exact);
+    case Method::Direct: return solve_direct(p, o.direct, o.linf);
+    case Method::Exact: return solve_exact(p, o.exact, o.linf);
     case Method::Relax: {
       if (o.relax_init == Method::Relax) throw InputError("relax cannot start from relax (--init l2|lp|irls|linf)");
       SolverOptions init = o;
       init.method = o.relax_init;
       const Result start = run_method(p, init);
-      if (!start.ok() && start.status != SolveStatus::MaxIterations) return start;
+      if (!start.usable()) return start;
       Result r = relax(p, start.positions, o.relax);
       r.time_s += start.time_s;
       r.lower_bound = start.lower_bound;
-      if (!start.ok()) {
-        r.status = start.status;
-        r.message = "initial " + method_name(o.relax_init) + ": " + start.message;
+      if (!start.ok()) {  // the start's shortfall stays visible
+        r.status = worse_status(r.status, start.status);
+        r.message = "initial " + method_name(o.relax_init) + ": " + start.message + "; " + r.message;
       }
       return r;
     }

@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
   if (verbose)
     options.progress = [](const IterationRecord& r) {
       std::fprintf(stderr, "linf %3d k %.12f bound %.12f gap %.2e t %.3fs\n", r.iteration, r.max_distortion, r.lower_bound,
-                   r.gap, r.time_s);
+                   r.certified_gap, r.time_s);
     };
 
   const Result r = solve_linf(p, options);

@@ -5,6 +5,7 @@
 // ratio of the largest to the second largest distortion, so it improves on L2 but stays
 // away from the strict minimizer.
 #include <functional>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/result.h"
@@ -14,6 +15,9 @@ namespace strictmin {
 struct IrlsOptions {
   int iterations = 50;
   std::function<void(const IterationRecord&)> progress;
+
+  // Range: iterations >= 0 (0: the L2 map).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 Result solve_irls(const Problem& problem, const IrlsOptions& options = {});

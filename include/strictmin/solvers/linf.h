@@ -18,6 +18,7 @@
 // equalities are supported (penalty elimination with refinement).
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/result.h"
@@ -59,8 +60,16 @@ struct LinfOptions {
   double regularization = 1e-15;
   int refinement_steps = 10;
   int verbose = 0;  // 1: one line per interior-point iteration on stderr; 2: also linear-algebra details
+
+  // Ranges: gap_tolerance, feasibility_tolerance, infeasibility_tolerance and
+  // acceptable_gap_tolerance in (0, 1); max_iterations >= 1; l2_slack > 0; step_fraction in
+  // (0, 1); regularization >= 0; refinement_steps >= 0; verbose in [0, 2]. False with the
+  // reason in *why otherwise (element_bounds is checked against the problem by solve_linf).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
+// Starts from the L2 map or problem.positions, whichever is better. Throws InputError for
+// invalid options.
 Result solve_linf(const Problem& problem, const LinfOptions& options = {});
 
 }  // namespace strictmin

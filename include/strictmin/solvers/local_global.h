@@ -12,6 +12,7 @@
 // Q_T S_T with Q_T the rotation closest to J_T S_T^T.
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/result.h"
@@ -27,6 +28,10 @@ struct LocalGlobalOptions {
   int max_iterations = 100;
   double relative_change = 1e-4;   // stop when |max_k - max_{k-1}| <= this * max_{k-1}
   std::function<void(const IterationRecord&)> progress;
+
+  // Ranges: max_iterations >= 0, relative_change not NaN (negative: never stop on the
+  // change), shapes empty or #E*n by m (checked against the problem by local_global).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 // Sets problem.targets from the map X (#V by n) by the local step.

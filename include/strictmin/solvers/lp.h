@@ -4,6 +4,7 @@
 // (Polya's algorithm: the L_p minimizers approach the L-infinity / strict minimizer as p
 // grows; the paper's Figure 13 shows they move away again for very large p).
 #include <functional>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/result.h"
@@ -15,6 +16,9 @@ struct LpOptions {
   int max_iterations = 200;           // Newton iterations in all stages together
   double tolerance = 1e-10;           // stop a stage when the Newton decrement^2 / 2 <= tolerance * f
   std::function<void(const IterationRecord&)> progress;
+
+  // Ranges: p >= 2 (finite), max_iterations >= 1, tolerance > 0.
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 Result solve_lp(const Problem& problem, const LpOptions& options = {});

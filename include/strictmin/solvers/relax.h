@@ -7,6 +7,7 @@
 // element; each colour moves in parallel.
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -28,11 +29,12 @@ struct RelaxOptions {
   // level (the Figure 2 square ends with all 800 triangles at 0.3). Larger values stop
   // earlier, further from the L-infinity optimum when starting from L2 (docs/strict.md).
   double accept_tolerance = 1e-4;
-  // After each sweep: sweep index (1-based), current maximum field deviation, elapsed
-  // seconds (IterationRecord has no field for the largest move: see largest_move).
+  // After each sweep: sweep index (1-based), current maximum field deviation, the largest
+  // distance a vertex moved (largest_move), elapsed seconds.
   std::function<void(const IterationRecord&)> progress;
-  // After each sweep, if set: sweep index (1-based) and the largest distance a vertex moved.
-  std::function<void(int, double)> largest_move;
+
+  // Ranges: sweeps >= 0, move_tolerance >= 0, accept_tolerance in [0, 1).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 // Precomputed structure for repeated sweeps on one mesh and fixed set (the ring of every

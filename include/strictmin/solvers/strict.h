@@ -10,6 +10,7 @@
 //   reference the others are compared with, for small meshes only.
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/linf.h"
@@ -36,7 +37,6 @@ struct DirectOptions {
   double delta_k = 1e-3;
   double k_min = 0.1;
   int max_steps = 100000;
-  LinfOptions linf;  // tolerances of every L-infinity solve (progress is not forwarded)
   // Relative gap at which the levels after the first stop: elements are fixed within
   // delta_k of a level, so its value is needed to a small fraction of delta_k only.
   // Negative: delta_k / 100 (never finer than linf.gap_tolerance). The first level (the
@@ -50,7 +50,10 @@ struct DirectOptions {
   int moving_rings = 2;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
-  Eigen::MatrixXd start;     // map the first level starts from (default: problem.positions)
+
+  // Ranges: delta_k > 0, k_min >= 0, max_steps >= 1, level_gap < 1 (negative: the default),
+  // moving_rings >= 0. False with the reason in *why otherwise.
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 struct ExactOptions {
@@ -58,17 +61,22 @@ struct ExactOptions {
   // below k - tolerance (see strict_exact.cpp for why not smaller).
   double tolerance = 1e-3;
   int max_elements = 3000;  // refuse larger meshes (see docs/strict.md)
-  LinfOptions linf;
   std::function<void(const StrictStep&)> progress;
+
+  // Ranges: tolerance > 0, max_elements >= 1.
+  bool is_valid(std::string* why = nullptr) const;
 };
 
+// Both start from problem.positions and solve every level with the tolerances of `linf`
+// (its element_bounds and progress are the algorithms' own and ignored).
 // Result.iterations = steps (levels); history has one record per step (k in
-// max_distortion); Result.lower_bound = the first level's certified bound.
-Result solve_direct(const Problem& problem, const DirectOptions& options = {});
+// max_distortion, the level's relative certified gap in certified_gap); Result.lower_bound =
+// the first level's certified bound. Throws InputError for invalid options.
+Result solve_direct(const Problem& problem, const DirectOptions& options = {}, const LinfOptions& linf = {});
 // The largest certified gap of a level of solve_direct's result (relative, as --gap; its
 // history's gaps), +inf when a level has no certified bound (its accuracy is unknown).
 double worst_level_gap(const Result& direct);
 // Throws InputError when the problem has more than options.max_elements elements.
-Result solve_exact(const Problem& problem, const ExactOptions& options = {});
+Result solve_exact(const Problem& problem, const ExactOptions& options = {}, const LinfOptions& linf = {});
 
 }  // namespace strictmin

@@ -26,12 +26,17 @@ struct SolverOptions {
   IrlsOptions irls;
   RelaxOptions relax;
   Method relax_init = Method::Linf;  // relax starts from this method's result (not relax itself)
-  DirectOptions direct;
-  ExactOptions exact;
+  DirectOptions direct;  // with linf's tolerances for every level
+  ExactOptions exact;    // with linf's tolerances for every level
+
+  // Every nested options struct valid and relax_init one of l2, lp, irls, linf; otherwise
+  // false with the reason (prefixed by the struct: "direct.delta_k must be > 0 (got 0)").
+  bool is_valid(std::string* why = nullptr) const;
 };
 
-// Runs options.method on the problem. For relax, the result's iterations are the sweeps
-// and time_s includes the initial solve.
+// Runs options.method on the problem, from problem.positions. For relax, the result's
+// iterations are the sweeps and time_s includes the initial solve. Throws InputError when
+// the options are not valid.
 Result run_method(const Problem& problem, const SolverOptions& options);
 
 }  // namespace strictmin

@@ -102,7 +102,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
   const bool done = monitor(st, res, info);
   out.monitor_s += since(tp);
   if (done) {
-    out.status = IpmStatus::Converged;
+    out.status = IpmStatus::MonitorStopped;
     return out;
   }
   Scaling sc;
@@ -230,7 +230,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     const bool stop = monitor(st, res, info);
     out.monitor_s += since(tp);
     if (stop) {
-      out.status = IpmStatus::Converged;
+      out.status = IpmStatus::MonitorStopped;
       return out;
     }
     bad_directions = dir.residual > settings.max_newton_residual ? bad_directions + 1 : 0;

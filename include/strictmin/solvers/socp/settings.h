@@ -61,7 +61,9 @@ struct IpmSettings {
   int verbose = 0;
 };
 
-enum class IpmStatus { Running, Converged, MaxIterations, NumericalError };
+// MonitorStopped: the caller's monitor asked to stop (its own criterion or a stall: the caller
+// decides the status, see linf.cpp); the method itself never declares convergence.
+enum class IpmStatus { Running, MonitorStopped, MaxIterations, NumericalError };
 
 // What the method knows after an iteration (iteration 0 is the starting point).
 struct IpmIteration {
