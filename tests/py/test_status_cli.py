@@ -1,0 +1,76 @@
+"""Statuses, exit codes and option ranges as a user meets them on the command line
+(docs/formats.md): exit 0 only for solved, 2 for any other outcome with the result still
+written, 1 for bad input that names the flag."""
+import json
+import os
+import tempfile
+import unittest
+
+from cli_support import run
+
+
+class OptionRanges(unittest.TestCase):
+    CASES = [
+        ("--delta-k", "0"), ("--delta-k", "-1"), ("--sweeps", "-5"), ("--gap", "-1"), ("--gap", "1"),
+        ("--gap", "nan"), ("--k-min", "-0.1"), ("--max-iterations", "0"), ("--p", "1"),
+        ("--irls-iterations", "-1"), ("--accept-tolerance", "1"), ("--move-tolerance", "-1"),
+        ("--level-gap", "2"), ("--moving-rings", "-1"), ("--exact-max-elements", "0"),
+        ("--lg-iterations", "0"), ("--lg-tolerance", "-1"), ("--threads", "-1"), ("--delta-k", "abc"),
+    ]
+
+    def test_out_of_range_flags_exit_1_naming_the_flag(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out.obj")
+            summary = os.path.join(d, "s.json")
+            for flag, value in self.CASES:
+                with self.subTest(flag=flag, value=value):
+                    p = run("deform", "--example", "square", "--method", "direct", flag, value, "-o", out,
+                            "--summary", summary, check_code=1)
+                    self.assertIn(flag, p.stderr)
+                    self.assertFalse(os.path.exists(out))
+                    self.assertFalse(os.path.exists(summary))
+
+
+class Statuses(unittest.TestCase):
+    def test_a_cap_is_max_iterations_exit_2_with_the_result_written(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "bar.mesh")
+            p = run("deform", "--example", "tetbar", "--measure", "arap", "--method", "l2", "--lg-iterations", "2",
+                    "-o", out, "--summary", "-", "--quiet", check_code=2)
+            s = json.loads(p.stdout)
+            self.assertEqual(s["status"], "max-iterations")
+            self.assertTrue(s["usable"])
+            self.assertIn("iteration cap", s["stop_reason"])
+            self.assertTrue(os.path.exists(out))
+            # The global steps' bound is not a bound on ARAP: it has its own key.
+            self.assertNotIn("fd_step_lower_bound", s)  # l2 has none
+
+    def test_arap_linf_lower_bound_moves_to_its_own_key(self):
+        p = run("deform", "--example", "bar", "--measure", "arap", "--method", "linf", "--lg-iterations", "3",
+                "--summary", "-", "--quiet")
+        self.assertIn(p.returncode, (0, 2))
+        s = json.loads(p.stdout)
+        self.assertIsNone(s["lower_bound"])
+        self.assertIsInstance(s["fd_step_lower_bound"], float)
+        self.assertEqual(p.returncode == 0, s["status"] == "solved")
+
+    def test_solved_is_exit_0_with_a_stop_reason(self):
+        s = json.loads(run("deform", "--example", "square", "--method", "linf", "--summary", "-", "--quiet",
+                           check_code=0).stdout)
+        self.assertEqual(s["status"], "solved")
+        self.assertTrue(s["usable"])
+        self.assertIn("converged", s["stop_reason"])
+        self.assertLessEqual(s["max_distortion"] - s["lower_bound"], 1e-8 * max(1, s["max_distortion"]))
+
+    def test_progress_prints_only_what_applies(self):
+        p = run("deform", "--example", "square", "--method", "relax", "--sweeps", "3", check_code=0)
+        sweeps = [l for l in p.stderr.splitlines() if "relax sweep" in l]
+        self.assertEqual(len(sweeps), 3)
+        for line in sweeps:
+            self.assertIn("largest move", line)
+            self.assertNotIn("nan", line)
+            self.assertNotIn("gap", line)
+
+
+if __name__ == "__main__":
+    unittest.main()
