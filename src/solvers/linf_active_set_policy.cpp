@@ -1,0 +1,98 @@
+#include "linf_active_set_policy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "strictmin/solvers/linf_active_set.h"
+
+namespace strictmin::linf_detail {
+
+ActiveSetPolicy::ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds)
+    : mp_(mp), effective_bounds_(effective_bounds) {}
+
+void ActiveSetPolicy::consider(const socp::IpmState& s, const Eigen::VectorXd& d, double k,
+                               const socp::IpmIteration& info, BestSoFar& best) {
+  const LinfOptions& options = mp_.options;
+  const double tol = options.gap_tolerance * std::max(1.0, std::abs(best.k));
+  if (!options.active_set_bounds || options.gap_tolerance > kTightestLooseTolerance) return;
+  if (!std::isfinite(best.k) || best.k - best.lower_bound <= tol) return;
+  const double certified_gap = best.k - best.lower_bound;
+  const bool near = best.k - info.dobj <= kNear * tol || info.gap <= kNear * tol;
+  const bool settled = certified_gap <= kSettled * tol && best.previous_k - k <= kSettledStep * certified_gap;
+  if (!near && !settled) return;
+  // A restriction tried before that misses part of the dual's support gives a bound below
+  // the optimum: retried (wider) only once the iterates' dual objective passes that bound or
+  // their gap falls well below the gap left to it. Otherwise only the map is tried again.
+  const bool retry = attempts_ == 0 || info.dobj > bound_ + tol || info.gap < kRetryGapFraction * (best.k - bound_);
+  const double iterate_gap = std::max(best.k - best.iterate_bound, tol);
+  if (!retry || attempts_ >= kMaxBoundAttempts || info.iteration == last_iteration_) {
+    const bool bound_close = best.k - bound_ <= kBoundClose * tol;
+    if (bound_close && maps_ < kMaxMaps && info.iteration != last_iteration_)
+      try_map(near_maximum(d, k, kReach * iterate_gap, tol), mp_.problem.with_free_dofs(s.x), best);
+    return;
+  }
+  const double reach = kReach * iterate_gap * std::pow(kReachGrowth, attempts_);
+  const std::vector<int> chosen = near_maximum(d, k, reach, tol);
+  ++attempts_;
+  last_iteration_ = info.iteration;
+  if (chosen.size() < kSameElements * elements_) {
+    attempts_ = kMaxBoundAttempts;
+    return;
+  }
+  elements_ = chosen.size();
+  try_bound(chosen, mp_.problem.with_free_dofs(s.x), tol, best);
+}
+
+std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
+  const MainProgram& mp = mp_;
+  const size_t cap = std::max<size_t>(kCapMin, mp.problem.num_elements() / kCapDivisor);
+  const Eigen::VectorXd& bounds = mp.options.element_bounds;
+  std::vector<int> chosen;
+  for (;; reach *= 0.1) {
+    chosen.clear();
+    for (int i = 0; i < mp.prog.num_element_cones(); ++i) {
+      const double top = i < mp.num_free_cones ? k : mp.prog.head_b[i];
+      if (d[i] >= top - reach) chosen.push_back(mp.elems[i]);
+    }
+    for (size_t j = 0; j < mp.cls.constant_elements.size(); ++j)
+      if (!socp::has_bound(bounds, mp.cls.constant_elements[j]) && mp.cls.constant_distortion[j] >= k - reach)
+        chosen.push_back(mp.cls.constant_elements[j]);
+    // Below a thousandth of the tolerance a smaller reach changes nothing that matters.
+    if (chosen.size() <= cap || reach < 1e-3 * tol) return chosen;
+  }
+}
+
+void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) {
+  ++maps_;
+  const Problem& p = mp_.problem;
+  const ActiveSetSolve m =
+      active_set_map(p, widen_by_rings(p, chosen, kMapRings, kMapGrowth), X, effective_bounds_, mp_.options);
+  if (mp_.options.verbose)
+    std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations)\n", m.elements, m.iterations);
+  if (m.positions.size() == 0 || !m.positions.allFinite()) return;
+  // Kept when it lowers k and meets every constraint, checked on the whole problem.
+  const Eigen::VectorXd x2 = p.free_dofs(m.positions);
+  const Eigen::VectorXd d2 = socp::cone_distortions(mp_.prog, x2);
+  const double k2 = mp_.max_free(d2);
+  if (k2 < best.k && mp_.bounds_met(d2) && mp_.equalities_met(x2)) {
+    best.k = k2;
+    best.x = x2;
+  }
+}
+
+void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol,
+                                BestSoFar& best) {
+  const ActiveSetSolve b = active_set_bound(mp_.problem, chosen, X, effective_bounds_, mp_.options);
+  if (mp_.options.verbose)
+    std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
+                 b.iterations);
+  bound_ = b.lower_bound;
+  if (b.lower_bound > best.lower_bound) {
+    best.lower_bound = b.lower_bound;
+    best.element_multipliers = b.multipliers;
+  }
+  if (best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol) try_map(chosen, X, best);
+}
+
+}  // namespace strictmin::linf_detail

@@ -1,0 +1,72 @@
+#pragma once
+// When solve_linf tries the active-set solves (linf_active_set.h) and on which elements
+// (private). Only for tight tolerances, once the main iterates are near the optimum:
+// - the bound from the elements within reach of the maximum (reach: a multiple of the
+//   iterates' certified gap, widened tenfold on each retry, at most kMaxBoundAttempts tries);
+// - the map from the same elements widened by rings, tried again at a later iterate while k
+//   stays above a bound close to it (at most kMaxMaps maps).
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "linf_main_solve.h"
+#include "linf_program.h"
+#include "strictmin/solvers/socp/residuals.h"
+#include "strictmin/solvers/socp/settings.h"
+
+namespace strictmin::linf_detail {
+
+class ActiveSetPolicy {
+ public:
+  // Loose tolerances (the strict minimizers' later levels) reach theirs about as soon from
+  // the iterates' own certificate, and a restriction tried early costs more.
+  static constexpr double kTightestLooseTolerance = 1e-6;
+  // Near: the method's gap or dual objective within kNear tolerances of k; or within kSettled
+  // tolerances once the maps have settled (the last step lowered k by under kSettledStep of
+  // the certified gap: the gap is then the dual's lag).
+  static constexpr double kNear = 1e3;
+  static constexpr double kSettled = 1e4;
+  static constexpr double kSettledStep = 1e-2;
+  // The reach: kReach times the iterates' certified gap, times kReachGrowth per retry.
+  static constexpr double kReach = 1e3;
+  static constexpr double kReachGrowth = 10;
+  static constexpr int kMaxBoundAttempts = 3;
+  // A retry waits until the iterates' gap falls below kRetryGapFraction of the gap left to
+  // the last restriction's bound (or their dual objective passes that bound).
+  static constexpr double kRetryGapFraction = 0.1;
+  // A retry whose elements grew by less than this factor cannot do better: the last.
+  static constexpr double kSameElements = 1.2;
+  // The map helps only once the bound is within kBoundClose tolerances of k.
+  static constexpr double kBoundClose = 1e2;
+  static constexpr int kMaxMaps = 2;
+  // The map's restriction: up to kMapRings rings around the chosen elements, while at most
+  // kMapGrowth times as many.
+  static constexpr int kMapRings = 2;
+  static constexpr double kMapGrowth = 3.0;
+  // At most max(kCapMin, E / kCapDivisor) elements in a restriction (the reach shrinks tenfold
+  // until they fit).
+  static constexpr size_t kCapMin = 1000;
+  static constexpr int kCapDivisor = 20;
+
+  ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds);
+
+  // Called at each certified iterate s (distortions d, its k): tries a bound and/or a map
+  // when it is time, updating best.
+  void consider(const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info,
+                BestSoFar& best);
+
+ private:
+  std::vector<int> near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const;
+  void try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best);
+  void try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol, BestSoFar& best);
+
+  const MainProgram& mp_;
+  const Eigen::VectorXd& effective_bounds_;
+  int attempts_ = 0;
+  int last_iteration_ = -1;  // of the last bound tried
+  double bound_ = -kInf;     // of the last restriction tried
+  int maps_ = 0;
+  size_t elements_ = 0;      // in the last restriction tried
+};
+
+}  // namespace strictmin::linf_detail

@@ -1,0 +1,92 @@
+#include "linf_program.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace strictmin::linf_detail {
+
+socp::IpmSettings ipm_settings(const LinfOptions& o) {
+  socp::IpmSettings s;
+  s.max_iterations = o.max_iterations;
+  s.gap_tolerance = o.gap_tolerance;
+  s.feasibility_tolerance = o.feasibility_tolerance;
+  s.step_fraction = o.step_fraction;
+  s.regularization = o.regularization;
+  s.refinement_steps = o.refinement_steps;
+  s.verbose = o.verbose;
+  return s;
+}
+
+MainProgram::MainProgram(const Problem& p, const LinfOptions& o, const socp::ElementClasses& classes)
+    : problem(p), options(o), cls(classes) {
+  const int n = p.image_dim;
+  elems = cls.free_elements;
+  elems.insert(elems.end(), cls.bounded_elements.begin(), cls.bounded_elements.end());
+  num_free_cones = static_cast<int>(cls.free_elements.size());
+  vertex_dof.assign(p.num_vertices, -1);
+  const std::vector<int> fi = p.free_index();
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (fi[v] >= 0) vertex_dof[v] = fi[v] * n;
+  num_x = p.num_free() * n;
+  prog = socp::element_program(p, elems, vertex_dof, num_x, p.positions);
+  // Bounded cones: head k_T instead of k.
+  for (int i = num_free_cones; i < prog.num_element_cones(); ++i) {
+    prog.head_a[i] = 0.0;
+    prog.head_b[i] = o.element_bounds[elems[i]];
+  }
+  // Constant free elements: one scalar cone k - constant_max >= 0.
+  has_kmin = cls.constant_max > -kInf;
+  if (has_kmin) {
+    prog.has_scalar = true;
+    prog.head_a.conservativeResize(prog.num_cones());
+    prog.head_b.conservativeResize(prog.num_cones());
+    prog.head_a[prog.num_cones() - 1] = 1.0;
+    prog.head_b[prog.num_cones() - 1] = -cls.constant_max;
+  }
+  has_k = num_free_cones > 0 || has_kmin;
+  socp::restrict_equalities(p, vertex_dof, num_x, p.positions, p.fixed, prog);
+}
+
+double MainProgram::max_free(const Eigen::VectorXd& d) const {
+  double k = has_kmin ? cls.constant_max : -kInf;
+  for (int i = 0; i < num_free_cones; ++i) k = std::max(k, d[i]);
+  return k;
+}
+
+bool MainProgram::bounds_met(const Eigen::VectorXd& d) const {
+  for (int i = num_free_cones; i < prog.num_element_cones(); ++i)
+    if (d[i] - prog.head_b[i] > options.feasibility_tolerance * std::max(1.0, prog.head_b[i])) return false;
+  return true;
+}
+
+bool MainProgram::equalities_met(const Eigen::VectorXd& x) const {
+  if (prog.num_eq() == 0) return true;
+  const double scale = std::max(1.0, prog.beq.cwiseAbs().maxCoeff());
+  return (prog.A * x - prog.beq).cwiseAbs().maxCoeff() <= options.feasibility_tolerance * scale;
+}
+
+Candidate MainProgram::evaluate(const Eigen::VectorXd& x) const {
+  Candidate cd;
+  cd.x = x;
+  const Eigen::VectorXd d = socp::cone_distortions(prog, x);
+  for (int i = 0; i < prog.num_element_cones(); ++i) {
+    if (i < num_free_cones)
+      cd.kmax = std::max(cd.kmax, d[i]);
+    else
+      cd.excess = std::max(cd.excess, d[i] - prog.head_b[i]);
+  }
+  if (has_kmin) cd.kmax = std::max(cd.kmax, cls.constant_max);
+  return cd;
+}
+
+void MainProgram::widen_bounds(double amount) {
+  for (int i = num_free_cones; i < prog.num_element_cones(); ++i) prog.head_b[i] += amount;
+}
+
+double MainProgram::bound_scale() const {
+  double scale = 1.0;
+  for (int i = num_free_cones; i < prog.num_element_cones(); ++i) scale = std::max(scale, prog.head_b[i]);
+  return scale;
+}
+
+}  // namespace strictmin::linf_detail
