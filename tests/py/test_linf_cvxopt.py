@@ -20,6 +20,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 try:
     import cvxopt
@@ -137,12 +138,15 @@ def main():
             print(f"skip {' '.join(args)}: the shared data folder is not here")
             continue
         d = run_tool(args)
+        start = time.perf_counter()
         status, k_cvx, tol = cvxopt_solve(d)
+        cvx_time = time.perf_counter() - start
         nan = float("nan")
         k = d["k"] if d["k"] is not None else nan
         lb = d["lower_bound"] if d["lower_bound"] is not None else nan  # JSON null: no bound
-        line = f"{' '.join(args)}: ours {d['status']} k={k:.10f} bound={lb:.10f} ({d['iterations']} it), " \
-               f"cvxopt {status} k={k_cvx:.10f} (tolerance {tol})"
+        # Times (docs/performance.md): ours is solve_linf's own time_s, CVXOPT's its socp calls.
+        line = f"{' '.join(args)}: ours {d['status']} k={k:.10f} bound={lb:.10f} ({d['iterations']} it, " \
+               f"{d['time_s']:.3f} s), cvxopt {status} k={k_cvx:.10f} (tolerance {tol}, {cvx_time:.3f} s)"
         ok = True
         if status == "primal infeasible":
             ok = d["status"] == "infeasible"
