@@ -225,3 +225,24 @@ TEST(Status, InnerCapPropagatesThroughLocalGlobal) {
 }
 
 }  // namespace
+
+namespace {
+
+// Reproducible: the same input, options and thread count give bitwise the same map, run
+// after run (the parallel parts reduce in a fixed order).
+TEST(Reproducible, DirectAndLinfGiveBitwiseTheSameMapTwice) {
+  const Problem p = test_support::random_target_bar();
+  DirectOptions o;
+  o.k_min = 0;
+  const Result a = solve_direct(p, o), b = solve_direct(p, o);
+  ASSERT_EQ(a.distortion.size(), b.distortion.size());
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_TRUE((a.positions.array() == b.positions.array()).all());
+  EXPECT_TRUE((a.distortion.array() == b.distortion.array()).all());
+  const Problem square = test_support::figure2(24, 0.2);
+  const Result c = solve_linf(square), d = solve_linf(square);
+  EXPECT_TRUE((c.positions.array() == d.positions.array()).all());
+  EXPECT_EQ(c.lower_bound, d.lower_bound);
+}
+
+}  // namespace

@@ -72,5 +72,19 @@ class Statuses(unittest.TestCase):
             self.assertNotIn("gap", line)
 
 
+class Reproducible(unittest.TestCase):
+    def test_two_runs_give_identical_distortion_files(self):
+        with tempfile.TemporaryDirectory() as d:
+            files = []
+            for i in range(2):
+                f = os.path.join(d, f"dist{i}.txt")
+                run("deform", "--example", "square", "--method", "direct", "--k-min", "0.05", "--distortion", f,
+                    "--quiet", check_code=0)
+                with open(f) as fh:
+                    files.append(fh.read())
+            self.assertGreater(len(files[0]), 0)
+            self.assertEqual(files[0], files[1])
+
+
 if __name__ == "__main__":
     unittest.main()
