@@ -25,7 +25,6 @@
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
-#include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 
 using namespace strictmin;

@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"

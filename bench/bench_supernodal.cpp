@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-#include "strictmin/solvers/socp/supernodal_cholesky.h"
+#include "solvers/socp/supernodal_cholesky.h"
 
 using strictmin::socp::SupernodalCholesky;
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "strictmin/io/atomic_file.h"
+#include "strictmin/version.h"
 
 // OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -83,10 +84,13 @@ void write_outputs(const OutputOptions& out, const nlohmann::json& summary, cons
       }
     });
   }
+  if (out.summary.empty()) return;
+  nlohmann::json s = summary;
+  s["version"] = std::string(version());  // every summary says which strictmin wrote it
   if (out.summary == "-") {
-    std::cout << summary.dump(2) << std::endl;
-  } else if (!out.summary.empty()) {
-    write_file_atomically(out.summary, [&](std::ostream& os) { os << summary.dump(2) << '\n'; });
+    std::cout << s.dump(2) << std::endl;
+  } else {
+    write_file_atomically(out.summary, [&](std::ostream& os) { os << s.dump(2) << '\n'; });
   }
 }
 

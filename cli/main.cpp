@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.h"
 #include "common.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/version.h"
 
 // OpenBLAS's own threads spin against CHOLMOD's and TBB's on small machines: one BLAS
 // thread is never slower for our supernodal factorizations and often much faster (the 100k
@@ -33,7 +35,7 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 bad input, 2 solver did not reach its tolerance (result still written).",
       "strictmin"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "strictmin 0.1.0");
+  app.set_version_flag("--version", "strictmin " + std::string(strictmin::version()));
   int exit_code = strictmin::cli::kExitSuccess;
   strictmin::cli::add_deform_command(app, exit_code);
   strictmin::cli::add_eval_command(app, exit_code);

@@ -11,6 +11,7 @@
 
 #include "strictmin/measures/measures.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/problem/parts.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 

@@ -20,12 +20,12 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/tasks/examples.h"
-#include "strictmin/solvers/socp/ordering.h"
-#include "strictmin/solvers/socp/soc.h"
-#include "strictmin/solvers/cholmod_view.h"
-#include "strictmin/solvers/socp/split_cholesky.h"
-#include "strictmin/solvers/socp/supernodal_factor.h"
-#include "strictmin/solvers/socp/supernodal_solve.h"
+#include "solvers/socp/ordering.h"
+#include "solvers/socp/soc.h"
+#include "solvers/cholmod_view.h"
+#include "solvers/socp/split_cholesky.h"
+#include "solvers/socp/supernodal_factor.h"
+#include "solvers/socp/supernodal_solve.h"
 #include "test_meshes.h"
 
 using namespace strictmin;

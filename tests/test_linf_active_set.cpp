@@ -13,12 +13,12 @@
 #include <numeric>
 #include <random>
 
-#include "strictmin/solvers/l2.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/tasks/examples.h"
-#include "strictmin/solvers/linf_active_set.h"
+#include "solvers/linf_active_set.h"
 #include "test_meshes.h"
 
 using namespace strictmin;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/solvers/l2.h"

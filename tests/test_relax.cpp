@@ -13,6 +13,7 @@
 #include <numeric>
 #include <vector>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"

@@ -13,11 +13,11 @@
 
 #include <Eigen/Geometry>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/report/strict_order.h"
-#include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/strict.h"
 #include "test_meshes.h"

@@ -51,4 +51,8 @@ std::vector<int> unanchored_parts(const ElementParts& parts, const std::vector<c
   return out;
 }
 
+std::vector<int> unanchored_components(const Problem& p) {
+  return unanchored_parts(element_parts(p), p.fixed);
+}
+
 }  // namespace strictmin

@@ -1,4 +1,4 @@
-#include "strictmin/solvers/element_assembly.h"
+#include "solvers/element_assembly.h"
 
 #include <algorithm>
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/io/input_error.h"
 #include "option_check.h"

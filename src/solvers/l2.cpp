@@ -6,13 +6,10 @@
 #include <numeric>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"
 
 namespace strictmin {
-
-std::vector<int> unanchored_components(const Problem& p) {
-  return unanchored_parts(element_parts(p), p.fixed);
-}
 
 L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
   if (p.has_equalities())
@@ -98,24 +95,6 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
   for (int v = 0; v < p.num_vertices; ++v)
     if (free_index_[v] >= 0) X.row(v) = Q.row(free_index_[v]);
   return X;
-}
-
-double field_deviation(const Problem& p, const Eigen::MatrixXd& X, int e) {
-  const int n = p.image_dim, m = p.domain_dim, c = p.corners();
-  double sum = 0;  // ||sum_j q_j g_j^T - R_T||_F^2, entry by entry
-  for (int r = 0; r < n; ++r)
-    for (int k = 0; k < m; ++k) {
-      double J = -p.targets(e * n + r, k);
-      for (int j = 0; j < c; ++j) J += X(p.elements(e, j), r) * p.gradients(e * c + j, k);
-      sum += J * J;
-    }
-  return std::sqrt(sum);
-}
-
-Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
-  Eigen::VectorXd d(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) d(e) = field_deviation(p, X, e);
-  return d;
 }
 
 Result solve_l2(const Problem& p, const L2Options&) {

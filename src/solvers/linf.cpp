@@ -23,13 +23,13 @@
 #include "linf_program.h"
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"
-#include "strictmin/solvers/l2.h"
-#include "strictmin/solvers/socp/certificate.h"
-#include "strictmin/solvers/socp/fd_program.h"
-#include "strictmin/solvers/socp/ipm.h"
-#include "strictmin/solvers/socp/kkt.h"
 #include "strictmin/solvers/timing.h"
+#include "solvers/socp/certificate.h"
+#include "solvers/socp/fd_program.h"
+#include "solvers/socp/ipm.h"
+#include "solvers/socp/kkt.h"
 
 namespace strictmin {
 namespace {

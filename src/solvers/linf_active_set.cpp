@@ -1,11 +1,11 @@
-#include "strictmin/solvers/linf_active_set.h"
+#include "solvers/linf_active_set.h"
 
 #include <algorithm>
 #include <limits>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"
 #include "strictmin/problem/subproblem.h"
-#include "strictmin/solvers/l2.h"
 
 namespace strictmin {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "strictmin/solvers/linf_active_set.h"
+#include "solvers/linf_active_set.h"
 
 namespace strictmin::linf_detail {
 

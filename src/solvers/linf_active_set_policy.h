@@ -11,8 +11,8 @@
 
 #include "linf_main_solve.h"
 #include "linf_program.h"
-#include "strictmin/solvers/socp/residuals.h"
-#include "strictmin/solvers/socp/settings.h"
+#include "solvers/socp/residuals.h"
+#include "solvers/socp/settings.h"
 
 namespace strictmin::linf_detail {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "linf_active_set_policy.h"
-#include "strictmin/solvers/socp/ipm.h"
+#include "solvers/socp/ipm.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin::linf_detail {

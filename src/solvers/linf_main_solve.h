@@ -10,9 +10,9 @@
 
 #include "linf_program.h"
 #include "strictmin/solvers/result.h"
-#include "strictmin/solvers/socp/certificate.h"
-#include "strictmin/solvers/socp/kkt.h"
-#include "strictmin/solvers/socp/settings.h"
+#include "solvers/socp/certificate.h"
+#include "solvers/socp/kkt.h"
+#include "solvers/socp/settings.h"
 
 namespace strictmin::linf_detail {
 

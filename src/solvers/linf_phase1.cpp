@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "strictmin/problem/parts.h"
-#include "strictmin/solvers/socp/certificate.h"
-#include "strictmin/solvers/socp/ipm.h"
+#include "solvers/socp/certificate.h"
+#include "solvers/socp/ipm.h"
 
 namespace strictmin::linf_detail {
 namespace {

@@ -8,7 +8,7 @@
 #include "linf_program.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/linf.h"
-#include "strictmin/solvers/socp/fd_program.h"
+#include "solvers/socp/fd_program.h"
 
 namespace strictmin::linf_detail {
 

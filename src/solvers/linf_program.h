@@ -13,9 +13,9 @@
 
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/linf.h"
-#include "strictmin/solvers/socp/cone_program.h"
-#include "strictmin/solvers/socp/fd_program.h"
-#include "strictmin/solvers/socp/settings.h"
+#include "solvers/socp/cone_program.h"
+#include "solvers/socp/fd_program.h"
+#include "solvers/socp/settings.h"
 
 namespace strictmin::linf_detail {
 

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "strictmin/solvers/element_assembly.h"
+#include "solvers/element_assembly.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 #include "strictmin/io/input_error.h"

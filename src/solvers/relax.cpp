@@ -7,7 +7,7 @@
 
 #include "relax_sweep.h"
 #include "strictmin/io/input_error.h"
-#include "strictmin/solvers/l2.h"
+#include "strictmin/measures/field_deviation.h"
 #include "option_check.h"
 
 namespace strictmin {

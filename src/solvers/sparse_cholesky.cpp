@@ -6,7 +6,7 @@
 #include <limits>
 #include <mutex>
 
-#include "strictmin/solvers/socp/supernodal_cholesky.h"
+#include "solvers/socp/supernodal_cholesky.h"
 
 namespace strictmin {
 namespace {

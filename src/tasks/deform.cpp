@@ -1,6 +1,7 @@
 #include "strictmin/tasks/deform.h"
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/problem/parts.h"
 #include "strictmin/solvers/l2.h"
 
 namespace strictmin {

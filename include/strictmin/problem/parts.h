@@ -20,4 +20,8 @@ ElementParts element_parts(const Problem& p, const std::vector<char>* elements =
 // The first vertex (in vertex order) of each part without an anchor (anchor: #V flags).
 std::vector<int> unanchored_parts(const ElementParts& parts, const std::vector<char>& anchor);
 
+// unanchored_parts of every element, anchored by the problem's fixed vertices: empty when
+// every part has a fixed vertex (the L2 solve's check).
+std::vector<int> unanchored_components(const Problem& p);
+
 }  // namespace strictmin

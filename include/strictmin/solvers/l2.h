@@ -51,12 +51,4 @@ class L2Solver {
 // the problem has no unique solution (a connected part without any fixed vertex).
 Result solve_l2(const Problem& problem, const L2Options& options = {});
 
-// Field deviation ||J_T - R_T||_F of every element for the map X, and of element e.
-Eigen::VectorXd field_deviation(const Problem& problem, const Eigen::MatrixXd& X);
-double field_deviation(const Problem& problem, const Eigen::MatrixXd& X, int e);
-
-// The first vertex of each connected part (through shared elements) that has no fixed
-// vertex; empty when every part is anchored.
-std::vector<int> unanchored_components(const Problem& problem);
-
 }  // namespace strictmin

@@ -55,7 +55,7 @@ struct LinfOptions {
   // src/solvers/linf_active_set.h). It certifies several iterations before the iterates'
   // own dual does.
   bool active_set_bounds = true;
-  // Interior-point internals (see solvers/socp/settings.h).
+  // Interior-point internals (see src/solvers/socp/settings.h).
   double step_fraction = 0.95;
   double regularization = 1e-15;
   int refinement_steps = 10;

@@ -1,8 +1,9 @@
 #pragma once
 // Sparse Cholesky (supernodal: CHOLMOD's symbolic analysis and fill-reducing order, our
-// numeric factorisation and substitutions, socp/supernodal_cholesky.h) with the symbolic
-// analysis kept: analyze() once per sparsity pattern, factorize() for every new matrix with
-// that pattern (a matrix with another pattern is analysed again), solve() as often as needed.
+// numeric factorisation and substitutions, src/solvers/socp/supernodal_cholesky.h) with the
+// symbolic analysis kept: analyze() once per sparsity pattern, factorize() for every new
+// matrix with that pattern (a matrix with another pattern is analysed again), solve() as
+// often as needed. CHOLMOD stays behind the private implementation.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "strictmin/solvers/socp/certificate.h"
+#include "solvers/socp/certificate.h"
 
 #include <cmath>
 #include <limits>

@@ -1,9 +1,9 @@
-#include "strictmin/solvers/socp/cone_program.h"
+#include "solvers/socp/cone_program.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "strictmin/solvers/socp/fixed_sizes.h"
+#include "solvers/socp/fixed_sizes.h"
 
 namespace strictmin::socp {
 

@@ -1,4 +1,4 @@
-#include "strictmin/solvers/socp/cones.h"
+#include "solvers/socp/cones.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,8 +7,8 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
 
-#include "strictmin/solvers/socp/fixed_sizes.h"
-#include "strictmin/solvers/socp/soc.h"
+#include "solvers/socp/fixed_sizes.h"
+#include "solvers/socp/soc.h"
 
 namespace strictmin::socp {
 namespace {

@@ -1,8 +1,8 @@
-#include "strictmin/solvers/socp/fd_program.h"
+#include "solvers/socp/fd_program.h"
 
 #include <cmath>
 
-#include "strictmin/solvers/l2.h"
+#include "strictmin/measures/field_deviation.h"
 
 namespace strictmin::socp {
 

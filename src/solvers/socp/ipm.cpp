@@ -1,4 +1,4 @@
-#include "strictmin/solvers/socp/ipm.h"
+#include "solvers/socp/ipm.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <memory>
 
-#include "strictmin/solvers/socp/cones.h"
-#include "strictmin/solvers/socp/kkt.h"
-#include "strictmin/solvers/socp/soc.h"
+#include "solvers/socp/cones.h"
+#include "solvers/socp/kkt.h"
+#include "solvers/socp/soc.h"
 
 namespace strictmin::socp {
 namespace {

@@ -1,4 +1,4 @@
-#include "strictmin/solvers/socp/kkt.h"
+#include "solvers/socp/kkt.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,8 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "strictmin/solvers/socp/ordering.h"
-#include "strictmin/solvers/socp/soc.h"
+#include "solvers/socp/ordering.h"
+#include "solvers/socp/soc.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {

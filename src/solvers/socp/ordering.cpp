@@ -1,11 +1,11 @@
-#include "strictmin/solvers/socp/ordering.h"
+#include "solvers/socp/ordering.h"
 
 #include <Eigen/SparseCore>
 #include <cholmod.h>
 #include <algorithm>
 #include <numeric>
 
-#include "strictmin/solvers/cholmod_view.h"
+#include "solvers/cholmod_view.h"
 
 namespace strictmin::socp {
 

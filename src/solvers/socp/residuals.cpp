@@ -1,4 +1,4 @@
-#include "strictmin/solvers/socp/residuals.h"
+#include "solvers/socp/residuals.h"
 
 #include <algorithm>
 #include <cmath>

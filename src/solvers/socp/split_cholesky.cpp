@@ -1,10 +1,10 @@
-#include "strictmin/solvers/socp/split_cholesky.h"
+#include "solvers/socp/split_cholesky.h"
 
 #include <cholmod.h>
 #include <algorithm>
 #include <tbb/parallel_invoke.h>
 
-#include "strictmin/solvers/socp/supernodal_cholesky.h"
+#include "solvers/socp/supernodal_cholesky.h"
 
 extern "C" {
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,

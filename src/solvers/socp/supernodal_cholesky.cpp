@@ -1,13 +1,13 @@
-#include "strictmin/solvers/socp/supernodal_cholesky.h"
+#include "solvers/socp/supernodal_cholesky.h"
 
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 
-#include "strictmin/solvers/cholmod_view.h"
-#include "strictmin/solvers/socp/supernodal_factor.h"
-#include "strictmin/solvers/socp/supernodal_solve.h"
+#include "solvers/cholmod_view.h"
+#include "solvers/socp/supernodal_factor.h"
+#include "solvers/socp/supernodal_solve.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {

@@ -1,9 +1,9 @@
-#include "strictmin/solvers/socp/supernodal_factor.h"
+#include "solvers/socp/supernodal_factor.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "strictmin/solvers/socp/vector_clones.h"
+#include "solvers/socp/vector_clones.h"
 
 extern "C" {
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,

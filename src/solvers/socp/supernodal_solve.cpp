@@ -1,8 +1,8 @@
-#include "strictmin/solvers/socp/supernodal_solve.h"
+#include "solvers/socp/supernodal_solve.h"
 
 #include <vector>
 
-#include "strictmin/solvers/socp/vector_clones.h"
+#include "solvers/socp/vector_clones.h"
 
 namespace strictmin::socp {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "strictmin/problem/problem.h"
-#include "strictmin/solvers/socp/cone_program.h"
+#include "solvers/socp/cone_program.h"
 
 namespace strictmin::socp {
 

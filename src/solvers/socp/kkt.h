@@ -25,11 +25,11 @@
 #include <memory>
 #include <vector>
 
-#include "strictmin/solvers/socp/cone_program.h"
-#include "strictmin/solvers/socp/cones.h"
-#include "strictmin/solvers/socp/settings.h"
-#include "strictmin/solvers/socp/split_cholesky.h"
-#include "strictmin/solvers/socp/supernodal_cholesky.h"
+#include "solvers/socp/cone_program.h"
+#include "solvers/socp/cones.h"
+#include "solvers/socp/settings.h"
+#include "solvers/socp/split_cholesky.h"
+#include "solvers/socp/supernodal_cholesky.h"
 
 namespace strictmin::socp {
 

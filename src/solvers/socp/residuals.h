@@ -9,7 +9,7 @@
 // pobj - dobj = s^T z.
 #include <Eigen/Core>
 
-#include "strictmin/solvers/socp/cone_program.h"
+#include "solvers/socp/cone_program.h"
 
 namespace strictmin::socp {
 

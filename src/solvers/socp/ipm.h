@@ -20,9 +20,9 @@
 // monitor that sees every iterate and decides when to stop (e.g. on a certified gap).
 #include <functional>
 
-#include "strictmin/solvers/socp/cone_program.h"
-#include "strictmin/solvers/socp/residuals.h"
-#include "strictmin/solvers/socp/settings.h"
+#include "solvers/socp/cone_program.h"
+#include "solvers/socp/residuals.h"
+#include "solvers/socp/settings.h"
 
 namespace strictmin::socp {
 

@@ -3,7 +3,7 @@
 // scaled point lambda, directions), each cone by the closed forms of soc.h, in parallel.
 #include <Eigen/Core>
 
-#include "strictmin/solvers/socp/cone_program.h"
+#include "solvers/socp/cone_program.h"
 
 namespace strictmin::socp {
 

@@ -15,7 +15,7 @@
 // orders the normal equations), solved per image coordinate.
 #include <Eigen/Core>
 
-#include "strictmin/solvers/socp/cone_program.h"
+#include "solvers/socp/cone_program.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {
