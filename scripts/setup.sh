@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
-  build-essential cmake
+  build-essential cmake pkgconf
   libeigen3-dev libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   python3 python3-numpy python3-cvxopt

@@ -10,7 +10,7 @@ import unittest
 from cli_support import DATA, run, write
 
 
-SUMMARY_KEYS = {"task", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}
+SUMMARY_KEYS = {"task", "version", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}
 
 
 class Deform(unittest.TestCase):
@@ -32,6 +32,19 @@ class Deform(unittest.TestCase):
         self.assertEqual(s["status"], "solved")
         self.assertGreater(s["max_distortion"], s["l2_distortion"])
         self.assertEqual(p.stderr, "", "--quiet prints nothing")
+
+    def test_version_is_the_summarys(self):
+        # One version (CMake's project(), strictmin/version.h): --version and every summary agree;
+        # the consumer_package test checks it against CMake's.
+        version = run("--version", check_code=0).stdout.strip()
+        self.assertRegex(version, r"^strictmin \d+\.\d+\.\d+$")
+        p = run("deform", "--example", "square", "--method", "l2", "--summary", "-", "--quiet", check_code=0)
+        self.assertEqual("strictmin " + json.loads(p.stdout)["version"], version)
+        mesh = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "consumer", "strip.obj")
+        summary = os.path.join(self.dir, "eval.json")
+        run("eval", mesh, mesh, "--summary", summary, "--quiet", check_code=0)
+        with open(summary) as f:
+            self.assertEqual("strictmin " + json.load(f)["version"], version)
 
     def test_square_direct_summary_levels_and_worst_level_gap(self):
         p = run("deform", "--example", "square", "--method", "direct", "--summary", "-", "--quiet", check_code=0)
