@@ -6,6 +6,7 @@
 #include <limits>
 #include <mutex>
 
+#include "solvers/serial_cholmod_scope.h"
 #include "solvers/socp/supernodal_cholesky.h"
 
 namespace strictmin {

@@ -9,9 +9,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "solvers/serial_cholmod_scope.h"
 #include "solvers/socp/ordering.h"
 #include "solvers/socp/soc.h"
-#include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {
 namespace {
@@ -243,7 +243,7 @@ double NormalEquations::analyze_flops() const {
 
 Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
-  SerialCholmodScope serial;  // one BLAS thread (sparse_cholesky.h)
+  SerialCholmodScope serial;  // one BLAS thread (serial_cholmod_scope.h)
   ++timers_.solves;
   const int N = p_.num_x;
   Eigen::VectorXd bp(N), out(N);
@@ -260,7 +260,7 @@ Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
 void NormalEquations::llt_solve2(const Eigen::VectorXd& b0, const Eigen::VectorXd& b1, Eigen::VectorXd& x0,
                                  Eigen::VectorXd& x1) const {
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
-  SerialCholmodScope serial;  // one BLAS thread (sparse_cholesky.h)
+  SerialCholmodScope serial;  // one BLAS thread (serial_cholmod_scope.h)
   ++timers_.solves;
   const int N = p_.num_x;
   Eigen::VectorXd bp0(N), bp1(N), xp0(N), xp1(N);
@@ -368,7 +368,7 @@ bool NormalEquations::factor(const Scaling& sc) {
   diag_saved_.resize(N);
   for (int d = 0; d < N; ++d) diag_saved_[d] = values[diagonal_[d]];
   bool ok = false;
-  SerialCholmodScope serial;  // sparse_cholesky.h: CHOLMOD's OpenMP loops and BLAS threads cost more than they gain
+  SerialCholmodScope serial;  // serial_cholmod_scope.h: CHOLMOD's OpenMP loops and BLAS threads cost more than they gain
   for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
     if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
     const double floor = 1e-3 * delta_ * max_diag_raw;

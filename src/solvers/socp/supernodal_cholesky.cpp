@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "solvers/cholmod_view.h"
+#include "solvers/serial_cholmod_scope.h"
 #include "solvers/socp/supernodal_factor.h"
 #include "solvers/socp/supernodal_solve.h"
-#include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::socp {
 
@@ -63,7 +63,7 @@ bool SupernodalCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
 
 bool SupernodalCholesky::factorize(const double* values) {
   if (!L_) return pattern_ && pattern_->rows() == 0;
-  SerialCholmodScope serial;  // sparse_cholesky.h: one BLAS thread (the wide supernodes' calls)
+  SerialCholmodScope serial;  // serial_cholmod_scope.h: one BLAS thread (the wide supernodes' calls)
   if (numeric_) {
     if (!numeric_->factorize(values)) return false;
   } else {
