@@ -83,6 +83,7 @@ if(PKG_CONFIG)
   string(STRIP "${run_output}" flags)
   separate_arguments(flags UNIX_COMMAND "${flags}")
   run(${CXX_LAUNCHER} ${CXX_COMPILER} -std=c++20 -O1 ${SOURCE_DIR}/tests/consumer/main.cpp -o ${WORK_DIR}/consumer_pc ${flags})
+  set(ENV{LD_LIBRARY_PATH} ${prefix}/${LIBDIR})  # a shared libstrictmin: pkg-config gives no RPATH
   run(${WORK_DIR}/consumer_pc ${SOURCE_DIR}/tests/consumer/strip.obj)
   if(NOT run_output MATCHES "max ${cmake_max}")
     message(FATAL_ERROR "the pkg-config build printed another result:\n${run_output}")
