@@ -57,7 +57,7 @@ int main(int argc, char** argv) try {
               status_name(out.result.status).c_str());
   write_mesh(output, out.deformed);  // the input mesh with the new positions
   std::printf("wrote %s\n", output.c_str());
-  return out.result.ok() ? 0 : 2;
+  return out.result.ok() ? 0 : 2;  // as the strictmin tool: 2 for any status but solved
 } catch (const std::exception& e) {  // strictmin::InputError for input the task can't take
   std::fprintf(stderr, "deform_handles: %s\n", e.what());
   return 1;

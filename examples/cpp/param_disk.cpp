@@ -33,7 +33,7 @@ int main(int argc, char** argv) try {
               out.boundary_overlap ? "overlaps itself" : "without overlaps");
   write_mesh(output, out.mapped);  // OBJ: v (the surface) and vt (the map)
   std::printf("wrote %s\n", output.c_str());
-  return out.result.ok() ? 0 : 2;
+  return out.result.ok() ? 0 : 2;  // as the strictmin tool: 2 for any status but solved
 } catch (const std::exception& e) {  // strictmin::InputError for a mesh that is not a disk
   std::fprintf(stderr, "param_disk: %s\n", e.what());
   return 1;
