@@ -292,8 +292,9 @@ bool NormalEquations::factor(const Scaling& sc) {
   const int N = p_.num_x, n = p_.n, m = p_.m, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
   const bool has_k = p_.has_k;
   PhaseTimer assemble_timer(timers_.assemble_wall, timers_.assemble_cpu);
-  // Element contributions, in parallel.
-  hkk_ = tbb::parallel_reduce(
+  // Element contributions, in parallel; the k-k entry sums in a fixed order (deterministic
+  // reduce), so that the same input gives bitwise the same iterates run after run.
+  hkk_ = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<int>(0, E, kGrain), 0.0,
       [&](const tbb::blocked_range<int>& range, double acc) {
         double gram[16], pv[12], v[10];
