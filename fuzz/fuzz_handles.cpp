@@ -20,7 +20,7 @@ void fuzz_handles(const std::string& text, int dim) {
   try {
     handles = strictmin::parse_handles(text, name, kVertices, dim);
   } catch (const strictmin::InputError& e) {
-    strictmin::fuzz::check_message(e, name);
+    strictmin::fuzz::check_message(e, name, text);
     return;
   }
   using strictmin::fuzz::require;

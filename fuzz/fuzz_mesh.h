@@ -66,7 +66,7 @@ inline int fuzz_mesh(const uint8_t* data, size_t size, const std::string& ext) {
   try {
     mesh = read_mesh_from_string(text, name, &warnings);
   } catch (const InputError& e) {
-    check_message(e, name);
+    check_message(e, name, text);
     return 0;
   }
   check_valid(mesh);

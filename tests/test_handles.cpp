@@ -56,6 +56,13 @@ TEST(Handles, JsonNumberOverflow) {
              {"o.json", "invalid JSON", "1e400"});
 }
 
+// Found by fuzzing: the JSON parser's message quotes the bytes it last read, control
+// characters included; they are escaped.
+TEST(Handles, JsonMessageHasNoControlCharacters) {
+  expect_bad(std::string("{\"n\x7f(\x01") + "\x82", "c.json", 2, {"c.json", "invalid JSON", "\\x7f"});
+  expect_bad("0 0 0\n1 \x1b[31m 0\n", "c.txt", 2, {"c.txt: line 2", "'\\x1b[31m'"});
+}
+
 TEST(Handles, JsonWithoutHandlesKey) {
   expect_bad(R"({"constraints": []})", "k.json", 2, {"k.json", "no \"handles\" key"});
   expect_bad(R"({"handles": 3})", "k.json", 2, {"k.json", "\"handles\" is not an array"});

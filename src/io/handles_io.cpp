@@ -105,7 +105,7 @@ std::vector<Handle> parse_json(const std::string& text, HandleCollector& handles
   try {
     root = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
-    throw InputError(located(name, 0, std::string("invalid JSON: ") + e.what()));
+    throw InputError(located(name, 0, "invalid JSON: " + io_detail::escape_control(e.what())));
   }
   const char* expected = " (expected {\"handles\": [{\"vertex\": 12, \"position\": [x, y]}, ...]})";
   if (!root.is_object() || !root.contains("handles"))
