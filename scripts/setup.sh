@@ -10,6 +10,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   python3 python3-numpy python3-cvxopt
   chromium
+  clang libclang-rt-14-dev  # the parsers' fuzz targets (libFuzzer), run by the tests' fuzz_smoke
 )
 
 SUDO=""

@@ -49,6 +49,20 @@ TEST(Handles, BadJson) {
   expect_bad(R"({"handles": [{"vertex": 1,}]})", "bad.json", 2, {"bad.json", "invalid JSON", "parse error"});
 }
 
+// Found by fuzzing (fuzz/fuzz_handles.cpp): a number too large for a double is not a
+// parse_error but an out_of_range exception, which escaped without the file name.
+TEST(Handles, JsonNumberOverflow) {
+  expect_bad(R"({"handles": [{"vertex": 1, "position": [1e400, 0]}]})", "o.json", 2,
+             {"o.json", "invalid JSON", "1e400"});
+}
+
+// Found by fuzzing: the JSON parser's message quotes the bytes it last read, control
+// characters included; they are escaped.
+TEST(Handles, JsonMessageHasNoControlCharacters) {
+  expect_bad(std::string("{\"n\x7f(\x01") + "\x82", "c.json", 2, {"c.json", "invalid JSON", "\\x7f"});
+  expect_bad("0 0 0\n1 \x1b[31m 0\n", "c.txt", 2, {"c.txt: line 2", "'\\x1b[31m'"});
+}
+
 TEST(Handles, JsonWithoutHandlesKey) {
   expect_bad(R"({"constraints": []})", "k.json", 2, {"k.json", "no \"handles\" key"});
   expect_bad(R"({"handles": 3})", "k.json", 2, {"k.json", "\"handles\" is not an array"});
@@ -68,6 +82,25 @@ TEST(Handles, JsonEntryWithBadTypes) {
   expect_bad(R"({"handles": [{"vertex": 1, "position": [0, "a"]}]})", "t.json", 2,
              {"entry 0", "\"position\" is not an array of numbers"});
   expect_bad(R"({"handles": [[1, 0, 0]]})", "t.json", 2, {"entry 0", "not an object"});
+  expect_bad(R"({"handles": [{"vertex": 1, "position": [0, "a"]}]})", "t.json", 2, {"item 1 is the string 'a'"});
+  expect_bad(R"({"handles": [{"vertex": [1], "position": [0, 0]}]})", "t.json", 2, {"\"vertex\" is not an integer: an array"});
+}
+
+// A message used to print the offending value whole, and printing is recursive: a deeply
+// nested value overflowed the stack (a crash, exit 139, instead of exit 1).
+TEST(Handles, DeeplyNestedValueIsDescribedNotPrinted) {
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  expect_bad(R"({"handles": [{"vertex": 1, "position": )" + deep + "}]}", "n.json", 2,
+             {"n.json", "entry 0", "its item 0 is an array"});
+  expect_bad(R"({"handles": [{"vertex": )" + deep + R"(, "position": [0, 0]}]})", "n.json", 2,
+             {"n.json", "entry 0", "\"vertex\" is not an integer: an array"});
+}
+
+// An index past the range of long is named as written, not wrapped to a negative number.
+TEST(Handles, HugeVertexIndexIsNamedAsWritten) {
+  expect_bad(R"({"handles": [{"vertex": 18446744073709551615, "position": [0, 0]}]})", "h.json", 2,
+             {"h.json", "entry 0", "vertex 18446744073709551615 out of range"});
+  expect_bad("99999999999999999999999 0 0\n", "h.txt", 2, {"h.txt: line 1: vertex '99999999999999999999999' out of range"});
 }
 
 TEST(Handles, VertexOutOfRange) {

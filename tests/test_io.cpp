@@ -350,6 +350,18 @@ TEST(ReadMedit, TruncatedSection) {
                      {"t.mesh", "Vertices announces 3 vertices, found 2"});
 }
 
+// A second Dimension used to reinterpret the vertices already read, a second Vertices or
+// Triangles section to replace the first, without a word.
+TEST(ReadMedit, RepeatedSectionsAreRejected) {
+  expect_input_error(
+      [] { read_mesh_from_string("Dimension 3\nVertices 1\n0 0 0 0\nDimension 2\nVertices 1 0 1 0\n", "d.mesh"); },
+      {"d.mesh: line 4: second 'Dimension' (the first is on line 1"});
+  const std::string text = "Dimension 2\nVertices 3\n0 0 0\n1 0 0\n0 1 0\nTriangles 1\n1 2 3 0\n"
+                           "vertices 3\n0 0 0\n2 0 0\n0 2 0\n";
+  expect_input_error([&] { read_mesh_from_string(text, "v.mesh"); },
+                     {"v.mesh: line 8: second 'vertices' (the first is on line 2"});
+}
+
 TEST(ReadMedit, BadNumber) {
   expect_input_error([] { read_mesh_from_string("Dimension 3\nVertices\n1\n0 x 0 0\n", "n.mesh"); },
                      {"n.mesh", "line 4", "expected a number", "'x'"});

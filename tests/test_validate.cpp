@@ -108,6 +108,34 @@ TEST(Validate, SliverIsNotZeroArea) {
   EXPECT_NO_THROW(validate_mesh(mesh(V, F), "sliver.obj"));
 }
 
+// The zero-area test is scale-free: it used to compute d^2 and areas in the file's units,
+// so a right triangle with legs of 1e160 overflowed to "zero area" and legs of 1e-170
+// underflowed to it. Sizes the solvers cannot take are rejected by name.
+TEST(Validate, ScaleDecidesNothingButTheSizeLimit) {
+  for (double scale : {1e-150, 1e-100, 1e100, 1e149}) {
+    Mesh m = square();
+    m.V *= scale;
+    EXPECT_NO_THROW(validate_mesh(m, "m.obj")) << scale;
+    Mesh t = two_tets();
+    t.V *= scale;
+    EXPECT_NO_THROW(validate_mesh(t, "m.obj")) << scale;
+  }
+  Mesh m = square();
+  m.V *= 1e160;
+  expect_invalid(m, {"m.obj: the mesh is too large", "1e+160", "1e-150 to 1e150"});
+  m = square();
+  m.V *= 1e-170;
+  expect_invalid(m, {"m.obj: the mesh is too small", "1e-170"});
+  m = square();
+  m.V.col(0) *= 1.7e308;  // the side itself overflows a double
+  m.V(0, 0) = -1.7e308;
+  expect_invalid(m, {"too large", "above 1.8e308"});
+  // The image of a map (no geometry checks) may be of any size.
+  m = square();
+  m.V *= 1e200;
+  EXPECT_NO_THROW(validate_mesh(m, "m.obj", nullptr, false));
+}
+
 TEST(Validate, ZeroVolumeTet) {
   Mesh t = two_tets();
   t.V.row(4) << 0.25, 0.25, 0.5;  // in the plane x + y + z = 1 of face (1, 2, 3)

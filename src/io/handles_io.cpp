@@ -2,6 +2,8 @@
 #include "strictmin/io/handles_io.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
@@ -20,12 +22,16 @@ class HandleCollector {
   HandleCollector(const std::string& name, int num_vertices, int dim)
       : name_(name), num_vertices_(num_vertices), dim_(dim) {}
 
+  // `vertex_text` is the index as written, for an index too large for a long.
+  [[noreturn]] void out_of_range(const std::string& vertex_text, long line, const std::string& prefix) const {
+    throw InputError(located(name_, line, prefix + "vertex " + vertex_text + " out of range (the mesh has " +
+                                              std::to_string(num_vertices_) + " vertices, indices from 0)"));
+  }
+
   void add(long vertex, const Eigen::VectorXd& position, long line, const std::string& prefix,
            const std::string& where) {
     auto fail = [&](const std::string& reason) { throw InputError(located(name_, line, prefix + reason)); };
-    if (vertex < 0 || vertex >= num_vertices_)
-      fail("vertex " + std::to_string(vertex) + " out of range (the mesh has " + std::to_string(num_vertices_) +
-           " vertices, indices from 0)");
+    if (vertex < 0 || vertex >= num_vertices_) out_of_range(std::to_string(vertex), line, prefix);
     if (position.size() != dim_)
       fail("handle has " + std::to_string(position.size()) + " coordinates, the mesh is " + std::to_string(dim_) + "D");
     for (Eigen::Index k = 0; k < position.size(); ++k)
@@ -53,6 +59,21 @@ class HandleCollector {
   std::unordered_map<int, std::pair<size_t, std::string>> seen_;  // vertex -> (index, where)
 };
 
+// An optionally signed run of digits: an integer, even when too large for a long.
+bool is_integer_text(std::string_view token) {
+  if (!token.empty() && (token[0] == '-' || token[0] == '+')) token.remove_prefix(1);
+  return !token.empty() && token.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// What a JSON value is, for a message: a number or short string as written, else its type
+// ("an array", "an object"). Never the whole value: dumping is recursive (a deeply nested
+// array would overflow the stack) and a large value would flood the message.
+std::string describe(const nlohmann::json& value) {
+  if (value.is_number() || value.is_boolean() || value.is_null()) return value.dump();
+  if (value.is_string()) return "the string " + quote_token(value.get_ref<const std::string&>());
+  return value.is_array() ? "an array" : "an object";
+}
+
 std::vector<Handle> parse_text(const std::string& text, HandleCollector& handles, const std::string& name) {
   io_detail::LineReader lines(text);
   std::string_view line;
@@ -62,8 +83,10 @@ std::vector<Handle> parse_text(const std::string& text, HandleCollector& handles
     std::string_view token;
     if (!tokens.next(token)) continue;
     long vertex;
-    if (!io_detail::parse_long(token, vertex))
+    if (!io_detail::parse_long(token, vertex)) {
+      if (is_integer_text(token)) handles.out_of_range(quote_token(token), ln, "");
       throw InputError(located(name, ln, "expected a vertex index (an integer), found " + quote_token(token)));
+    }
     std::vector<double> values;
     while (tokens.next(token)) {
       double value;
@@ -81,8 +104,8 @@ std::vector<Handle> parse_json(const std::string& text, HandleCollector& handles
   nlohmann::json root;
   try {
     root = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(located(name, 0, std::string("invalid JSON: ") + e.what()));
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
+    throw InputError(located(name, 0, "invalid JSON: " + io_detail::escape_control(e.what())));
   }
   const char* expected = " (expected {\"handles\": [{\"vertex\": 12, \"position\": [x, y]}, ...]})";
   if (!root.is_object() || !root.contains("handles"))
@@ -98,12 +121,17 @@ std::vector<Handle> parse_json(const std::string& text, HandleCollector& handles
     if (!entry.contains("vertex")) fail("missing \"vertex\"");
     if (!entry.contains("position")) fail("missing \"position\"");
     const nlohmann::json& vertex = entry["vertex"];
-    if (!vertex.is_number_integer()) fail("\"vertex\" is not an integer: " + vertex.dump());
+    if (!vertex.is_number_integer()) fail("\"vertex\" is not an integer: " + describe(vertex));
+    // An unsigned value past the range of long reads back wrapped (negative): name it as written.
+    if (vertex.is_number_unsigned() && vertex.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<long>::max()))
+      handles.out_of_range(vertex.dump(), 0, prefix);
     const nlohmann::json& position = entry["position"];
-    if (!position.is_array()) fail("\"position\" is not an array of numbers: " + position.dump());
+    if (!position.is_array()) fail("\"position\" is not an array of numbers: it is " + describe(position));
     Eigen::VectorXd p(static_cast<Eigen::Index>(position.size()));
     for (size_t k = 0; k < position.size(); ++k) {
-      if (!position[k].is_number()) fail("\"position\" is not an array of numbers: " + position.dump());
+      if (!position[k].is_number())
+        fail("\"position\" is not an array of numbers: its item " + std::to_string(k) + " is " +
+             describe(position[k]));
       p(static_cast<Eigen::Index>(k)) = position[k].get<double>();
     }
     handles.add(vertex.get<long>(), p, 0, prefix, where);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,7 @@ class MeditParser {
       const long ln = tokens_.line();
       const std::string keyword = lowercase(token);
       if (keyword == "end") break;
+      check_once(keyword, token, ln);
       if (keyword == "meshversionformatted") {
         const long version = read_long("version");
         if (version < 1 || version > 4) fail(name_, ln, "unsupported MeshVersionFormatted " + std::to_string(version));
@@ -106,6 +108,18 @@ class MeditParser {
   }
 
  private:
+  // The header keywords and the sections read may appear once: a second Vertices section
+  // would silently replace the first, a second Dimension reinterpret the vertices read.
+  void check_once(const std::string& keyword, std::string_view token, long line) {
+    if (keyword != "meshversionformatted" && keyword != "dimension" && keyword != "vertices" &&
+        keyword != "triangles" && keyword != "tetrahedra")
+      return;
+    const auto [it, first] = first_line_.try_emplace(keyword, line);
+    if (!first)
+      fail(name_, line, "second " + quote_token(token) + " (the first is on line " + std::to_string(it->second) +
+                            "; a .mesh file has each section once)");
+  }
+
   // A section's entry count, bounded by the text size (each entry takes several tokens).
   long read_count(const char* what) {
     const long count = read_long(what);
@@ -207,6 +221,7 @@ class MeditParser {
   std::vector<double> vertices_;
   std::vector<int> triangles_, tets_;
   std::vector<long> triangle_lines_, tet_lines_;
+  std::map<std::string, long> first_line_;  // keyword -> line of its first appearance
 };
 
 void append_element_section(std::string& b, const char* section, const Eigen::MatrixXi& elements, int ref,

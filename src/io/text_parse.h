@@ -115,10 +115,29 @@ inline bool parse_long(std::string_view token, long& value) {
   return ec == std::errc() && ptr == token.data() + token.size();
 }
 
-// Token for an error message, shortened and quoted.
+// Text for an error message with its control characters (a binary file's bytes, an escape
+// sequence) shown as \xNN rather than sent to the terminal.
+inline std::string escape_control(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      static const char hex[] = "0123456789abcdef";
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Token for an error message, shortened, quoted, control characters escaped.
 inline std::string quote_token(std::string_view token) {
-  if (token.size() > 40) return "'" + std::string(token.substr(0, 37)) + "...'";
-  return "'" + std::string(token) + "'";
+  if (token.size() > 40) return "'" + escape_control(token.substr(0, 37)) + "...'";
+  return "'" + escape_control(token) + "'";
 }
 
 inline std::string lowercase(std::string_view s) {

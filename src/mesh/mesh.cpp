@@ -9,11 +9,13 @@ bool Mesh::is_planar(double relative_tolerance) const {
   if (dim() == 2) return true;
   if (dim() != 3 || V.rows() == 0) return false;
   // Constant z up to a tolerance relative to the bounding-box diagonal.
+  // Half extents: hi - lo overflows for coordinates near the largest double.
   const Eigen::RowVector3d lo = V.colwise().minCoeff();
   const Eigen::RowVector3d hi = V.colwise().maxCoeff();
-  const double diagonal = (hi - lo).norm();
-  if (!std::isfinite(diagonal)) return false;
-  return hi(2) - lo(2) <= relative_tolerance * diagonal;
+  const Eigen::RowVector3d half_extent = 0.5 * hi - 0.5 * lo;
+  const double half_diagonal = half_extent.stableNorm();
+  if (!std::isfinite(half_diagonal)) return false;
+  return half_extent(2) <= relative_tolerance * half_diagonal;
 }
 
 Mesh to_planar(const Mesh& mesh) {

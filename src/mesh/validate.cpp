@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <utility>
 
 #include "strictmin/io/input_error.h"
@@ -19,6 +20,10 @@ namespace {
 // volume <= eps * d^3, d the bounding-box diagonal of the used vertices. Real slivers
 // (0.06-degree angles) are far above this; exactly collinear/coplanar corners are below.
 constexpr double kDegenerateEps = 1e-14;
+// Sizes (the largest side of the used vertices' bounding box) the solvers take: beyond them
+// squared and cubed lengths overflow or underflow and a solve ends in numerical-error
+// (measured: 1e-150 and 1e150 solve, 1e-170 and 1e170 do not).
+constexpr double kMinSize = 1e-150, kMaxSize = 1e150;
 
 class Validator {
  public:
@@ -110,25 +115,43 @@ class Validator {
           lo[d] = std::min(lo[d], V(F(e, k), d));
           hi[d] = std::max(hi[d], V(F(e, k), d));
         }
+    // The test is scale-free, so it is made on the used vertices moved into the unit box
+    // (largest side 1): areas and volumes of far larger or smaller meshes (coordinates of
+    // 1e200 or 1e-120) neither overflow nor underflow into "zero area". Half extents first:
+    // hi - lo itself may overflow.
+    double half_extent = 0.0;
+    for (Eigen::Index d = 0; d < dim; ++d) half_extent = std::max(half_extent, 0.5 * hi[d] - 0.5 * lo[d]);
+    if (half_extent == 0.0) {
+      half_extent = 1.0;  // all used vertices coincide: every element is zero
+    } else if (half_extent > 0.5 * kMaxSize || half_extent < 0.5 * kMinSize) {
+      const double side = 2.0 * half_extent;  // inf only past the largest double
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", side);
+      fail(std::string("the mesh is too ") + (side > kMaxSize ? "large" : "small") +
+           ": its bounding box's largest side is " + (std::isinf(side) ? "above 1.8e308" : text) +
+           " (strictmin takes sizes from 1e-150 to 1e150: scale the coordinates)");
+    }
+    auto unit_box = [&](int v) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      for (Eigen::Index d = 0; d < dim; ++d) p(d) = (0.5 * V(v, d) - 0.5 * lo[d]) / half_extent;
+      return p;
+    };
     double diagonal2 = 0.0;
-    for (Eigen::Index d = 0; d < dim; ++d) diagonal2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    for (Eigen::Index d = 0; d < dim; ++d) diagonal2 += std::pow((0.5 * hi[d] - 0.5 * lo[d]) / half_extent, 2);
     const double diagonal = std::sqrt(diagonal2);
     planar_ = !tets_ && mesh_.is_planar();
     for (Eigen::Index e = 0; e < F.rows(); ++e) {
       double measure, signed_measure = 0.0;
       if (tets_) {
         Eigen::Matrix3d edges;  // rows: v1 - v0, v2 - v0, v3 - v0
-        for (int k = 0; k < 3; ++k) edges.row(k) = V.row(F(e, k + 1)) - V.row(F(e, 0));
+        for (int k = 0; k < 3; ++k) edges.row(k) = (unit_box(F(e, k + 1)) - unit_box(F(e, 0))).transpose();
         signed_measure = edges.determinant() / 6.0;
         measure = std::abs(signed_measure);
         if (measure <= kDegenerateEps * diagonal * diagonal * diagonal)
           fail(element(e) + " has zero volume (vertices " + corner_list(e) + " are coplanar)");
       } else {
         Eigen::Vector3d p[3];
-        for (int k = 0; k < 3; ++k) {
-          p[k].setZero();
-          p[k].head(V.cols()) = V.row(F(e, k)).transpose();
-        }
+        for (int k = 0; k < 3; ++k) p[k] = unit_box(F(e, k));
         const Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
         measure = 0.5 * normal.norm();
         signed_measure = 0.5 * normal.z();

@@ -19,6 +19,8 @@ namespace strictmin {
 // Orientation: an all-clockwise planar mesh is accepted silently; all-negative tets are
 // rejected ("all tets are inverted ... swap two corners"). Degenerate means area <=
 // 1e-14 d^2 or volume <= 1e-14 d^3, d the bounding-box diagonal of the used vertices.
+// With the geometry checks, a mesh whose bounding box (used vertices) has its largest side
+// outside [1e-150, 1e150] is rejected as too large or too small for the solvers.
 // check_geometry = false skips the zero-area/volume and orientation checks: for the image of
 // a map (eval's MAPPED mesh), where flipped or collapsed elements are results to report.
 void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings = nullptr,
