@@ -21,9 +21,9 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
   g->add_flag("--linf-min-l2", a.linf_min_l2,
               "linf: among the L-infinity optima, return the one with the least L2 distortion (a second solve)");
   g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(at_least(2));
-  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves (>= 0)")
+  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves (>= 1)")
       ->capture_default_str()
-      ->check(at_least(0));
+      ->check(at_least(1));
   g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices (>= 0)")
       ->capture_default_str()
       ->check(at_least(0));

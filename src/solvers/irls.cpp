@@ -10,7 +10,7 @@
 namespace strictmin {
 
 bool IrlsOptions::is_valid(std::string* why) const {
-  return OptionCheck(why).at_least("iterations", iterations, 0).ok();
+  return OptionCheck(why).at_least("iterations", iterations, 1).ok();
 }
 
 Result solve_irls(const Problem& p, const IrlsOptions& options) {

@@ -16,7 +16,7 @@ struct IrlsOptions {
   int iterations = 50;
   std::function<void(const IterationRecord&)> progress;
 
-  // Range: iterations >= 0 (0: the L2 map).
+  // Range: iterations >= 1 (--method l2 is the plain L2 map).
   bool is_valid(std::string* why = nullptr) const;
 };
 
