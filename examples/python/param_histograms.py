@@ -63,7 +63,7 @@ def main():
     ax.set_xlabel("ARAP distortion per triangle")
     ax.set_ylabel("fraction of the area")
     ax.set_title(f"{Path(args.mesh).name}: {len(F)} triangles")
-    ax.legend()
+    ax.legend(loc="upper left")
     fig.tight_layout()
     png = out / "histograms.png"
     fig.savefig(png, dpi=120)

@@ -50,7 +50,11 @@ py::dict result_dict(const Result& r, const char* map_key, const Eigen::MatrixXd
   out["usable"] = r.usable();
   out["message"] = r.message;
   out["iterations"] = r.iterations;
-  out["lower_bound"] = r.lower_bound;
+  // As in the summary: under arap / asap the global steps' certified bound is for field
+  // deviation with their rotations fixed, not a bound on the measure reported.
+  const bool local_global = std::string(stage) == "local-global";
+  out["lower_bound"] = local_global ? kNotApplicable : r.lower_bound;
+  out["fd_step_lower_bound"] = local_global ? r.lower_bound : kNotApplicable;
   py::list history;
   for (const IterationRecord& h : r.history) history.append(record_dict(h, stage));
   out["history"] = history;

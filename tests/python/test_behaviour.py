@@ -168,3 +168,48 @@ def test_no_leaks():
     calls(1000)
     after = rss_kib()
     assert after - before < 2048, f"resident memory grew by {after - before} KiB over 1,000 calls"
+
+
+def test_any_layout_and_dtype():
+    V, F, idx, pos = pulled_square(4)
+    ref = strictmin.deform(V, F, idx, pos, method="linf")
+    V32 = V.astype(np.float32).astype(np.float64)  # the values float32 holds
+    a = strictmin.deform(V32.astype(np.float32), F.astype(np.uint16), list(idx), pos.tolist(), method="linf")
+    b = strictmin.deform(V32, F, idx, pos, method="linf")
+    np.testing.assert_array_equal(a.distortion, b.distortion)
+    Vt = np.asfortranarray(V)
+    Fs = np.repeat(F, 2, axis=0)[::2]  # F as a non-contiguous view
+    assert not Fs.flags.c_contiguous
+    c = strictmin.deform(Vt, Fs, idx[::-1], pos[::-1], method="linf", threads=1)
+    np.testing.assert_allclose(c.distortion, ref.distortion, rtol=0, atol=1e-12)
+    assert c.positions.flags.c_contiguous and c.positions.dtype == np.float64
+
+
+def test_lower_bound_as_in_the_summary():
+    V, F, idx, pos = pulled_square(4)
+    linf = strictmin.deform(V, F, idx, pos, method="linf")
+    assert linf.lower_bound == linf.summary["lower_bound"]
+    arap = strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_iterations=3)
+    assert np.isnan(arap.lower_bound) and arap.summary["lower_bound"] is None
+    assert arap.fd_step_lower_bound == arap.summary["fd_step_lower_bound"]
+    assert [h["iteration"] for h in arap.history] == [h["iteration"] for h in arap.summary["history"]]
+    assert all(h["stage"] == "local-global" for h in arap.history)
+
+
+def test_read_write_round_trip(tmp_path):
+    V, F = saddle(3)
+    uv = V[:, :2] * 0.5
+    q = np.arange(len(F), dtype=float)
+    strictmin.write_mesh(tmp_path / "m.obj", V, F, uv=uv)
+    strictmin.write_mesh(tmp_path / "m.ply", V, F, quality=q)
+    V2, F2 = strictmin.read_mesh(tmp_path / "m.obj")
+    np.testing.assert_array_equal(F2, F)
+    np.testing.assert_allclose(V2, V, rtol=0, atol=1e-15)
+    assert "property float quality" in (tmp_path / "m.ply").read_text()
+    # the UVs written are the map: its distortion read back from the file's vt
+    d_file = strictmin.distortion(V, F, uv, "asap")
+    assert np.allclose(d_file, strictmin.distortion(V2, F2, uv, "asap"), atol=1e-15)
+    with pytest.raises(ValueError, match="no file|cannot|No such"):
+        strictmin.read_mesh(tmp_path / "missing.obj")
+    with pytest.raises(ValueError, match="quality has 3 values"):
+        strictmin.write_mesh(tmp_path / "q.ply", V, F, quality=q[:3])
