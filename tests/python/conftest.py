@@ -31,6 +31,24 @@ def saddle(n):
     return V, F
 
 
+def tet_bar(n):
+    """An n by 1 by 1 bar of unit cubes, each split into 6 positively oriented tets."""
+    def vid(i, j, k):
+        return (i * 2 + j) * 2 + k
+    V = np.array([[i, j, k] for i in range(n + 1) for j in range(2) for k in range(2)], dtype=float)
+    T = []
+    for i in range(n):
+        c = [vid(i + (b >> 2 & 1), b >> 1 & 1, b & 1) for b in range(8)]  # corner b = (x, y, z) bits
+        for a, b in ((1, 3), (1, 5), (2, 3), (2, 6), (4, 5), (4, 6)):  # paths 0 -> a -> b -> 7
+            T.append([c[0], c[a], c[b], c[7]])
+    T = np.array(T)
+    for t in T:  # orient every tet positively
+        d = np.linalg.det(V[t[1:]] - V[t[0]])
+        if d < 0:
+            t[[1, 2]] = t[[2, 1]]
+    return V, T
+
+
 def square_handles(V, n, shift=0.25):
     """The bottom row fixed, the top row moved sideways by `shift`."""
     bottom = np.arange(n + 1)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import strictmin
-from conftest import grid, read_numbers, run_cli, saddle, square_handles
+from conftest import grid, read_numbers, run_cli, saddle, square_handles, tet_bar
 
 VARYING = {"time_s", "solver_time_s", "init_time_s", "input", "output", "distortion_file", "source", "target"}
 
@@ -33,7 +33,7 @@ def cli_run(tmp_path, args, name="run"):
     return json.loads(summary.read_text()), read_numbers(dist)
 
 
-@pytest.mark.parametrize("method,measure", [("linf", "fd"), ("l2", "arap"), ("relax", "fd")])
+@pytest.mark.parametrize("method,measure", [("linf", "fd"), ("l2", "arap"), ("relax", "fd"), ("direct", "fd")])
 def test_deform(tmp_path, method, measure):
     n = 6
     V, F = grid(n)
@@ -48,6 +48,24 @@ def test_deform(tmp_path, method, measure):
     np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
     same_summary(r.summary, summary)
     assert r.status == summary["status"] and r.usable == summary["usable"]
+
+
+def test_deform_tets(tmp_path):
+    V, T = tet_bar(3)
+    left = np.flatnonzero(V[:, 0] == 0)
+    right = np.flatnonzero(V[:, 0] == 3)
+    idx = np.concatenate([left, right])
+    pos = V[idx].copy()
+    pos[len(left):, 1] += 0.6  # the right end moved sideways
+    mesh, handles = tmp_path / "bar.mesh", tmp_path / "handles.txt"
+    strictmin.write_mesh(mesh, V, T)
+    handles.write_text("".join(f"{i} {x!r} {y!r} {z!r}\n" for i, (x, y, z) in zip(idx, pos)))
+    V, T = strictmin.read_mesh(mesh)
+    summary, dist = cli_run(tmp_path, ["deform", mesh, "--handles", handles, "--method", "linf"])
+    r = strictmin.deform(V, T, idx, pos, method="linf")
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.positions.shape == V.shape and r.summary["dimension"] == 3
 
 
 def test_param(tmp_path):
