@@ -11,7 +11,6 @@ See docs/python.md for every function, keyword and the result object.
 import numbers
 import sys
 import warnings
-from collections import namedtuple
 
 import numpy as np
 
@@ -21,10 +20,26 @@ from ._result import Result
 __all__ = ["read_mesh", "write_mesh", "deform", "param", "interp", "distortion", "compare", "Result",
            "Comparison"]
 
-Comparison = namedtuple("Comparison", "order level value_a value_b area_a area_b")
-Comparison.__doc__ = """The strict order of d1 against d2: order -1 (d1 less distorting), 0 (equivalent)
-or 1 (more distorting); level: the index of the first distortion level that differs (-1 when
-equivalent), value_a / value_b and area_a / area_b that level's values and areas."""
+class Comparison(tuple):
+    """The strict order of d1 against d2, unpacked as ``order, level = compare(...)``:
+    ``order`` -1 (d1 less distorting), 0 (equivalent) or 1 (more distorting); ``level`` the
+    index of the first distortion level that differs (-1 when equivalent). Also
+    ``value_a`` / ``value_b`` and ``area_a`` / ``area_b``: that level's values and areas."""
+
+    def __new__(cls, order, level, value_a=0.0, value_b=0.0, area_a=0.0, area_b=0.0):
+        self = super().__new__(cls, (int(order), int(level)))
+        self.value_a, self.value_b, self.area_a, self.area_b = value_a, value_b, area_a, area_b
+        return self
+
+    order = property(lambda self: self[0])
+    level = property(lambda self: self[1])
+
+    def __reduce__(self):
+        return (Comparison, (self[0], self[1], self.value_a, self.value_b, self.area_a, self.area_b))
+
+    def __repr__(self):
+        return (f"Comparison(order={self[0]}, level={self[1]}, value_a={self.value_a:.6g}, "
+                f"value_b={self.value_b:.6g}, area_a={self.area_a:.6g}, area_b={self.area_b:.6g})")
 
 
 def _vertices(V, name="V"):

@@ -66,8 +66,12 @@ def test_linf_against_l2_and_the_strict_order():
     assert strictmin.compare(l2.distortion, linf.distortion, w).order == 1
     c = strictmin.compare(relax.distortion, relax.distortion, w)
     assert (c.order, c.level) == (0, -1)
-    order, level, *_ = strictmin.compare(np.array([1.0, 0.5]), np.array([1.0, 0.7]), np.array([1.0, 1.0]))
+    order, level = strictmin.compare(np.array([1.0, 0.5]), np.array([1.0, 0.7]), np.array([1.0, 1.0]))
     assert (order, level) == (-1, 1)
+    c = strictmin.compare([1.0, 0.5], [1.0, 0.7])
+    assert (c.order, c.level, c.value_a, c.value_b) == (-1, 1, 0.5, 0.7)
+    back = pickle.loads(pickle.dumps(c))
+    assert back == c and back.value_b == 0.7
 
 
 def test_result_object_and_pickle():
