@@ -8,7 +8,7 @@
 #include <string>
 
 #include "strictmin/report/stats.h"
-#include "strictmin/report/summary.h"
+#include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/solvers/result.h"
 #include "strictmin/solvers/timing.h"
 

@@ -9,6 +9,7 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_strictmin, m) {
   m.doc() = "strictmin: maps of meshes with the least possible worst-case distortion (compiled part)";
+  m.attr("__version__") = STRICTMIN_VERSION;
   // Bad input raises ValueError with the library's message (the one the command line prints).
   py::register_exception_translator([](std::exception_ptr p) {
     try {

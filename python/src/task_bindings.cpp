@@ -13,7 +13,7 @@
 #include "options.h"
 #include "run_released.h"
 #include "strictmin/io/input_error.h"
-#include "strictmin/report/summary.h"
+#include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/deform.h"
 #include "strictmin/tasks/interp.h"
@@ -104,6 +104,7 @@ py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::Vect
   });
   nlohmann::json s = deform_summary(mesh, handles.size(), options, *d, {});
   s["time_s"] = seconds_since(t0);
+  s["version"] = STRICTMIN_VERSION;
   const bool lg = options.measure == Measure::Arap || options.measure == Measure::Asap;
   py::dict out = result_dict(d->result, "positions", d->deformed.V, d->measured.distortion, d->measured.weights,
                              history_stage(options.solver, lg), s);
@@ -134,6 +135,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   });
   nlohmann::json s = param_summary(mesh, options, *p, {});
   s["time_s"] = seconds_since(t0);
+  s["version"] = STRICTMIN_VERSION;
   const bool lg = !options.init_only && options.measure != Measure::FieldDeviation;
   py::dict out = result_dict(p->result, "uv", p->result.positions, p->measured.distortion, p->measured.weights,
                              history_stage(options.solver, lg), s);
@@ -185,6 +187,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
     frame["time_s"] = seconds[i];
     s["frames"] = nlohmann::json::array({frame});
     s["time_s"] = seconds[i];
+    s["version"] = STRICTMIN_VERSION;
     py::dict r = result_dict(f.result, "positions", f.mesh.V, f.result.distortion, f.weights, "local-global", s);
     r["t"] = f.t;
     out.append(r);

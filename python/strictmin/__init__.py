@@ -17,6 +17,8 @@ import numpy as np
 from . import _strictmin
 from ._result import Result
 
+__version__ = _strictmin.__version__
+
 __all__ = ["read_mesh", "write_mesh", "deform", "param", "interp", "distortion", "compare", "Result",
            "Comparison"]
 

@@ -1,4 +1,4 @@
-#include "strictmin/report/summary.h"
+#include "summary.h"
 
 #include <cmath>
 

@@ -1,7 +1,8 @@
 #pragma once
 // The summary of a task's run as JSON: the keys of `strictmin ... --summary` (docs/formats.md),
 // built in one place for the command-line tool and the Python module. Keys that depend on
-// the caller's clock (time_s) are added by the caller.
+// the caller's clock (time_s) are added by the caller. A private header (src/): it is not
+// part of the installed API, whose headers need Eigen only.
 #include <nlohmann/json.hpp>
 #include <string>
 
