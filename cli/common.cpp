@@ -72,8 +72,6 @@ std::shared_ptr<void> limit_threads(int threads) {
                                                static_cast<size_t>(threads));
 }
 
-nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
 void write_outputs(const OutputOptions& out, const nlohmann::json& summary, const Eigen::VectorXd& distortion) {
   if (!out.distortion.empty()) {
     write_file_atomically(out.distortion, [&](std::ostream& os) {
@@ -123,33 +121,5 @@ void progress(const OutputOptions& out, const std::string& line) {
 }
 
 int exit_code_for(SolveStatus status) { return status == SolveStatus::Solved ? kExitSuccess : kExitNotConverged; }
-
-void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
-  s["max_distortion"] = number_or_null(stats.max);
-  s["max_element"] = stats.max_element;
-  s["l2_distortion"] = number_or_null(stats.l2);
-  s["mean_distortion"] = number_or_null(stats.mean);
-  s["flipped"] = stats.flipped;
-}
-
-void add_status_summary(nlohmann::json& s, const Result& r) {
-  s["status"] = status_name(r.status);
-  s["usable"] = r.usable();
-  s["stop_reason"] = r.message;
-  if (!r.message.empty()) s["message"] = r.message;
-}
-
-void add_local_global_summary(nlohmann::json& s, const Result& r) {
-  s["local_global_iterations"] = r.iterations;
-  // The global steps' certified bound is for field deviation with their rotations fixed, not
-  // for the ARAP / ASAP measure reported: it moves to its own key, lower_bound is null.
-  if (s.contains("lower_bound")) {
-    s["fd_step_lower_bound"] = s["lower_bound"];
-    s["lower_bound"] = nullptr;
-  }
-  nlohmann::json history = nlohmann::json::array();
-  for (const auto& h : r.history) history.push_back({{"iteration", h.iteration}, {"max", h.max_distortion}});
-  s["history"] = history;
-}
 
 }  // namespace strictmin::cli

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "strictmin/report/stats.h"
+#include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/solvers/result.h"
 #include "strictmin/solvers/timing.h"
 
@@ -40,19 +41,6 @@ std::shared_ptr<void> limit_threads(int threads);
 // Writes the summary (pretty JSON) to a file (atomically) or stdout, and the distortion
 // vector, one value per line in element order.
 void write_outputs(const OutputOptions& out, const nlohmann::json& summary, const Eigen::VectorXd& distortion);
-
-// A JSON number, or null for a non-finite value (an infinite distortion, no bound).
-nlohmann::json number_or_null(double x);
-
-// The distortion keys of every summary: max_distortion, max_element, l2_distortion,
-// mean_distortion, flipped.
-void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats);
-
-// status, and message when there is one.
-void add_status_summary(nlohmann::json& s, const Result& r);
-
-// arap / asap: local_global_iterations, stop_reason and history (the maximum per iteration).
-void add_local_global_summary(nlohmann::json& s, const Result& r);
 
 // One progress line on stderr for an iteration record: the label, the iteration, the
 // maximum, then only the fields that apply to the solver (not NaN), the elapsed time.

@@ -70,22 +70,7 @@ int run_deform(const DeformArgs& a) {
     w.element_quality = &d.measured.distortion;
     write_mesh(a.output, d.deformed, w);
   }
-  nlohmann::json s;
-  s["task"] = "deform";
-  s["input"] = input;
-  s["output"] = a.output;
-  s["distortion_file"] = a.out.distortion;
-  s["method"] = method_name(options.solver.method);
-  s["measure"] = measure_name(options.measure);
-  s["elements"] = mesh.num_elements();
-  s["vertices"] = mesh.num_vertices();
-  s["handles"] = handles.size();
-  s["dimension"] = d.problem.image_dim;
-  add_distortion_summary(s, d.measured.stats);
-  add_status_summary(s, d.result);
-  add_solver_summary(s, options.solver, d.result);
-  if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
-  s["solver_time_s"] = d.result.time_s;
+  nlohmann::json s = deform_summary(mesh, handles.size(), options, d, {input, a.output, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);
   if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_task_report(a.report, s, input, mesh, handles, d)));

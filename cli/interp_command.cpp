@@ -112,17 +112,7 @@ int run_interp(const InterpArgs& a) {
   progress(a.out, "interp: " + std::to_string(source.num_elements()) + " elements (" + interp_kind_name(interp.kind()) +
                       "), method " + a.solver.method + ", " + std::to_string(a.times.size()) + " frame(s)");
 
-  nlohmann::json s;
-  s["task"] = "interp";
-  s["source"] = a.source;
-  s["target"] = a.target;
-  s["kind"] = interp_kind_name(interp.kind());
-  s["method"] = method_name(options.solver.method);
-  s["elements"] = source.num_elements();
-  s["vertices"] = source.num_vertices();
-  s["pin"] = options.pin_vertex < 0 ? nlohmann::json("centroid") : nlohmann::json(options.pin_vertex);
-  s["lg_iterations_cap"] = a.lg_iterations;
-  s["lg_tolerance"] = a.lg_tolerance;
+  nlohmann::json s = interp_summary(source, interp.kind(), options, a.source, a.target);
   nlohmann::json frames = nlohmann::json::array();
   SolveStatus worst = SolveStatus::Solved;
   Eigen::VectorXd last_distortion;
@@ -140,14 +130,7 @@ int run_interp(const InterpArgs& a) {
       worst = worse_status(worst, f.result.status);
       progress(a.out, "warning: t = " + std::to_string(t) + ": " + status_name(f.result.status) + ": " + f.result.message);
     }
-    nlohmann::json j;
-    j["t"] = t;
-    j["output"] = path;
-    add_distortion_summary(j, f.stats);
-    if (interp.kind() == InterpKind::Surface) j["flipped"] = nullptr;  // no orientation to flip
-    add_status_summary(j, f.result);
-    add_solver_summary(j, options.solver, f.result);
-    add_local_global_summary(j, f.result);
+    nlohmann::json j = interp_frame_summary(f, interp.kind(), options, path);
     j["time_s"] = seconds_since(tf);
     frames.push_back(j);
     last_distortion = f.result.distortion;

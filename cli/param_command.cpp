@@ -80,27 +80,7 @@ int run_param(ParamArgs a) {
   const ParamOutcome p = parametrize(mesh, options, a.mesh);
   if (!p.result.ok()) progress(a.out, "warning: " + status_name(p.result.status) + ": " + p.result.message);
   if (!a.output.empty()) write_mesh(a.output, p.mapped);
-  nlohmann::json s;
-  s["task"] = "param";
-  s["input"] = a.mesh;
-  s["output"] = a.output;
-  s["distortion_file"] = a.out.distortion;
-  s["method"] = method;
-  s["measure"] = measure_name(options.measure);
-  s["init"] = init_name(options.init);
-  s["elements"] = mesh.num_elements();
-  s["vertices"] = mesh.num_vertices();
-  s["boundary_vertices"] = p.boundary.size();
-  add_distortion_summary(s, p.measured.stats);
-  s["flips"] = p.flips;
-  s["boundary_overlap"] = p.boundary_overlap;
-  add_status_summary(s, p.result);
-  if (!options.init_only) {
-    add_solver_summary(s, options.solver, p.result);
-    if (options.measure != Measure::FieldDeviation) add_local_global_summary(s, p.result);
-  }
-  s["init_time_s"] = p.init_time_s;
-  s["solver_time_s"] = p.result.time_s;
+  nlohmann::json s = param_summary(mesh, options, p, {a.mesh, a.output, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, p.measured.distortion);
   if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_param_report(a.report, s, a.mesh, mesh, p)));

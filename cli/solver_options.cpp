@@ -98,21 +98,4 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   return o;
 }
 
-void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result& r) {
-  s["iterations"] = r.iterations;
-  if (o.method == Method::Linf || o.method == Method::Direct || o.method == Method::Exact ||
-      (o.method == Method::Relax && o.relax_init == Method::Linf))
-    s["lower_bound"] = number_or_null(r.lower_bound);
-  if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
-  // Below delta-k / 4 every level's band of fixed elements is where Algorithm 2 puts it;
-  // null when a level has no certified bound.
-  if (o.method == Method::Direct) s["worst_level_gap"] = number_or_null(worst_level_gap(r));
-  if (o.method == Method::Relax) {
-    s["sweeps"] = r.iterations;
-    s["init"] = method_name(o.relax_init);
-    s["accept_tolerance"] = o.relax.accept_tolerance;
-  }
-  if (o.method == Method::Lp) s["p"] = o.lp.p;
-}
-
 }  // namespace strictmin::cli

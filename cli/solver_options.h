@@ -37,7 +37,4 @@ void add_solver_options(CLI::App& cmd, SolverArgs& args);
 // Throws InputError for an unknown method.
 SolverOptions make_solver_options(const SolverArgs& args, const OutputOptions& out);
 
-// Summary keys that depend on the method (lower_bound, iterations, levels, ...).
-void add_solver_summary(nlohmann::json& summary, const SolverOptions& options, const Result& result);
-
 }  // namespace strictmin::cli

@@ -9,6 +9,8 @@ PACKAGES=(
   libeigen3-dev libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   python3 python3-numpy python3-cvxopt
+  python3-dev pybind11-dev python3-pybind11 python3-pytest python3-meshio python3-matplotlib
+  python3-setuptools python3-wheel python3-pip python3-venv
   chromium
   clang libclang-rt-14-dev  # the parsers' fuzz targets (libFuzzer), run by the tests' fuzz_smoke
 )

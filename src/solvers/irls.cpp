@@ -5,6 +5,7 @@
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -30,6 +31,7 @@ Result solve_irls(const Problem& p, const IrlsOptions& options) {
   Eigen::VectorXd w = Eigen::VectorXd::Ones(p.num_elements());
   r.distortion = field_deviation(p, r.positions);
   for (int it = 1; it <= options.iterations; ++it) {
+    check_interrupt();  // solvers/interrupt.h
     // Lawson's update; a floor keeps K positive definite when some D_T reach 0.
     w = w.cwiseProduct(r.distortion);
     const double total = p.weights.dot(w);

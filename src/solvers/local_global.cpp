@@ -10,6 +10,7 @@
 #include "strictmin/measures/measures.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/relax.h"
+#include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -47,6 +48,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   StopState stop;
   std::string reason;
   for (int it = 1; it <= o.max_iterations; ++it) {
+    check_interrupt();  // solvers/interrupt.h
     local_step(p, out.positions, o);
     Result r;
     if (sweeper) {

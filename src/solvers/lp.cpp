@@ -10,6 +10,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -60,6 +61,7 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
     if (!(scale > 0)) break;  // every element at zero distortion
     bool stage_done = false;
     while (!stage_done && iteration < options.max_iterations) {
+      check_interrupt();  // solvers/interrupt.h
       // Gradient and Hessian of f = sum A (s/K)^q with s = ||r_T||:
       // grad = sum c_T B^T r_T, Hessian = sum B^T c_T (I + (q-2) r r^T / s^2) B, c_T = A q s^(q-2) / K^q.
       const double f = lp_energy(res, p.weights, nm, q, scale);

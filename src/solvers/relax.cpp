@@ -8,6 +8,7 @@
 #include "relax_sweep.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
+#include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -72,6 +73,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
   Deviations dev;
   bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {
+    check_interrupt();  // solvers/interrupt.h
     IterationRecord record;
     record.iteration = s;
     if (dev.age >= kRefreshInterval) dev.age = -1;

@@ -10,6 +10,7 @@
 #include "strictmin/solvers/timing.h"
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/interrupt.h"
 
 namespace strictmin {
 namespace {
@@ -124,6 +125,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   out.positions = p.positions;
   Problem level = p;
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
+    check_interrupt();  // solvers/interrupt.h
     linf.element_bounds = bounds;
     if (step == 2) {
       const double level_gap = options.level_gap >= 0 ? options.level_gap : 1e-2 * options.delta_k;

@@ -28,6 +28,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/solvers/timing.h"
+#include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -62,6 +63,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
     out.message = where + ": " + r.message;
   };
   for (int level = 1; undecided > 0; ++level) {
+    check_interrupt();  // solvers/interrupt.h
     linf.element_bounds = bounds;
     const Result r = solve_linf(p, linf);
     ++solves;

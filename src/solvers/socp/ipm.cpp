@@ -9,6 +9,7 @@
 #include "solvers/socp/cones.h"
 #include "solvers/socp/kkt.h"
 #include "solvers/socp/soc.h"
+#include "strictmin/solvers/interrupt.h"
 
 namespace strictmin::socp {
 namespace {
@@ -111,6 +112,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
   Eigen::VectorXd st_trial, zt_trial, vprod, tcorr, qg, zero_rs, zero_rdx, zero_req;
   int small_steps = 0, bad_directions = 0;
   for (int it = 1; it <= settings.max_iterations; ++it) {
+    check_interrupt();  // solvers/interrupt.h
     out.iterations = it;
     if (!compute_scaling(p, st.s, st.z, sc)) {
       out.status = IpmStatus::NumericalError;

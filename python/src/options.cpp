@@ -1,0 +1,143 @@
+#include "options.h"
+
+#include <climits>
+#include <cmath>
+
+#include "convert.h"
+#include "strictmin/io/input_error.h"
+
+namespace py = pybind11;
+
+namespace strictmin::python {
+namespace {
+
+double real(const std::string& key, py::handle v) {
+  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v))
+    throw py::type_error(key + " must be a number, not " + std::string(py::str(v.get_type().attr("__name__"))));
+  try {
+    return v.cast<double>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(key + " must be a number, not " + std::string(py::str(v.get_type().attr("__name__"))));
+  }
+}
+
+int integer(const std::string& key, py::handle v) {
+  if (py::isinstance<py::bool_>(v) || py::isinstance<py::float_>(v) || py::isinstance<py::str>(v))
+    throw py::type_error(key + " must be an integer, not " + std::string(py::str(v.get_type().attr("__name__"))));
+  long long x = 0;
+  try {
+    x = v.cast<long long>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(key + " must be an integer, not " + std::string(py::str(v.get_type().attr("__name__"))));
+  }
+  if (x < INT_MIN || x > INT_MAX) throw InputError(key + ": " + std::to_string(x) + " is out of range");
+  return static_cast<int>(x);
+}
+
+bool flag(const std::string& key, py::handle v) {
+  if (!py::isinstance<py::bool_>(v)) throw py::type_error(key + " must be True or False");
+  return v.cast<bool>();
+}
+
+std::string text(const std::string& key, py::handle v) {
+  if (!py::isinstance<py::str>(v)) throw py::type_error(key + " must be a string");
+  return v.cast<std::string>();
+}
+
+// One keyword onto the options; false when the task doesn't take it.
+bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
+  SolverOptions& s = o.solver;
+  if (key == "gap") s.linf.gap_tolerance = real(key, v);
+  else if (key == "max_iterations") s.linf.max_iterations = integer(key, v);
+  else if (key == "linf_min_l2") s.linf.minimize_l2_among_optimal = flag(key, v);
+  else if (key == "p") s.lp.p = real(key, v);
+  else if (key == "irls_iterations") s.irls.iterations = integer(key, v);
+  else if (key == "sweeps") s.relax.sweeps = integer(key, v);
+  else if (key == "move_tolerance") s.relax.move_tolerance = real(key, v);
+  else if (key == "accept_tolerance") s.relax.accept_tolerance = real(key, v);
+  else if (key == "init") o.init = text(key, v);
+  else if (key == "delta_k") s.direct.delta_k = real(key, v);
+  else if (key == "k_min") s.direct.k_min = real(key, v);
+  else if (key == "level_gap") s.direct.level_gap = real(key, v);
+  else if (key == "moving_rings") s.direct.moving_rings = integer(key, v);
+  else if (key == "exact_max_elements") s.exact.max_elements = integer(key, v);
+  else if (key == "threads") o.threads = integer(key, v);
+  else if (key == "lg_iterations") o.local_global.max_iterations = integer(key, v);
+  else if (key == "lg_tolerance") o.local_global.relative_change = real(key, v);
+  else if (key == "start" && task == Task::Deform) o.start = text(key, v);
+  else if (key == "pin" && task == Task::Interp) {
+    if (py::isinstance<py::str>(v)) {
+      if (text(key, v) != "centroid")
+        throw InputError("pin takes 'centroid' or a vertex index (0-based), not '" + text(key, v) + "'");
+      o.pin = -1;
+    } else {
+      o.pin = integer(key, v);
+      if (o.pin < 0) throw InputError("pin takes 'centroid' or a vertex index (0-based), not " + std::to_string(o.pin));
+    }
+  } else
+    return false;
+  return true;
+}
+
+// The checks the command line makes beyond the options' own is_valid.
+void check_task_ranges(const TaskOptions& o, Task task, const std::string& key) {
+  if (key == "threads" && o.threads < 0) throw InputError("threads must be >= 0 (got " + std::to_string(o.threads) + ")");
+  if (key == "lg_iterations" && task != Task::Interp && o.local_global.max_iterations < 1)
+    throw InputError("lg_iterations must be >= 1 (got " + std::to_string(o.local_global.max_iterations) + ")");
+  if (key == "lg_tolerance" && !(o.local_global.relative_change >= 0))
+    throw InputError("lg_tolerance must be >= 0 (got " + std::to_string(o.local_global.relative_change) + ")");
+}
+
+}  // namespace
+
+TaskOptions parse_options(Task task, const std::string& function, const std::string& method,
+                          const py::dict& options) {
+  TaskOptions o;
+  for (const auto& [k, v] : options) {
+    const std::string key = py::str(k);
+    if (!apply(o, task, key, v))
+      throw py::type_error(function + "() got an unexpected keyword argument '" + key + "'");
+    std::string why;
+    if (!o.solver.is_valid(&why) || !o.local_global.is_valid(&why)) throw InputError(key + ": " + why);
+    check_task_ranges(o, task, key);
+  }
+  std::string m = method;
+  if (task == Task::Param && (m == "tutte" || m == "lscm")) m = "l2";  // the starting map itself
+  const auto parsed = parse_method(m);
+  if (!parsed) throw InputError("unknown method '" + method + "' (use one of: " + method_list() + ")");
+  o.solver.method = *parsed;
+  std::string relax_init = o.init.empty() ? "linf" : o.init;
+  if (task == Task::Param && (relax_init == "tutte" || relax_init == "lscm")) relax_init = "linf";
+  const auto init = parse_method(relax_init);
+  if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
+    throw InputError("unknown init '" + o.init + "' (use " +
+                     (task == Task::Param ? "tutte, lscm, " : "") + "l2, lp, irls or linf)");
+  o.solver.relax_init = *init;
+  if (o.start != "l2" && o.start != "rest") throw InputError("unknown start '" + o.start + "' (use l2 or rest)");
+  return o;
+}
+
+void wire_progress(TaskOptions& o, PyObject* callback) {
+  if (!callback) return;
+  auto records = [callback](const char* stage) {
+    return [callback, stage](const IterationRecord& r) {
+      py::gil_scoped_acquire gil;
+      const py::handle function(callback);
+      function(record_dict(r, stage));
+    };
+  };
+  o.solver.linf.progress = records("linf");
+  o.solver.lp.progress = records("lp");
+  o.solver.irls.progress = records("irls");
+  o.solver.relax.progress = records("relax");
+  o.local_global.progress = records("local-global");
+  auto steps = [callback](const StrictStep& s) {
+    py::gil_scoped_acquire gil;
+    const py::handle function(callback);
+    function(step_dict(s));
+  };
+  o.solver.direct.progress = steps;
+  o.solver.exact.progress = steps;
+}
+
+}  // namespace strictmin::python

@@ -1,0 +1,34 @@
+#pragma once
+// Keyword arguments -> the library's options, with the command-line tool's names and
+// defaults (docs/python.md lists them per function).
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "strictmin/solvers/local_global.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin::python {
+
+enum class Task { Deform, Param, Interp };
+
+struct TaskOptions {
+  SolverOptions solver;
+  LocalGlobalOptions local_global;
+  std::string init;           // param: tutte (default) or lscm; relax: l2, lp, irls, linf
+  std::string start = "l2";   // deform arap / asap: l2 or rest
+  int pin = -1;               // interp: -1 the centroid, else a vertex
+  int threads = 0;            // 0: all cores
+};
+
+// method: the CLI's --method; options: the other keywords. Unknown keywords raise
+// TypeError, wrong types TypeError, values out of range ValueError naming the keyword and
+// the library's reason (Options::is_valid), unknown method names ValueError.
+TaskOptions parse_options(Task task, const std::string& function, const std::string& method,
+                          const pybind11::dict& options);
+
+// Sends every solver's iteration records (and the strict levels) to `callback` (a Python
+// callable, borrowed: the caller keeps it alive during the solve), taking the GIL for each.
+void wire_progress(TaskOptions& o, PyObject* callback);
+
+}  // namespace strictmin::python

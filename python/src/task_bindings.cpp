@@ -1,0 +1,210 @@
+// deform, param, interp: options from keywords, the solve on a worker thread without the
+// GIL (run_released.h), the result as a dict with the command line's summary.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+#include "strictmin/version.h"
+#include "bindings.h"
+#include "convert.h"
+#include "options.h"
+#include "run_released.h"
+#include "strictmin/io/input_error.h"
+#include "report/summary.h"  // private (src/): the CLI and the Python module
+#include "strictmin/solvers/timing.h"
+#include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/interp.h"
+#include "strictmin/tasks/param.h"
+
+// OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
+namespace py = pybind11;
+
+namespace strictmin::python {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Limits TBB (and OpenBLAS) to `threads` while alive; 0 leaves the defaults.
+std::unique_ptr<tbb::global_control> limit_threads(int threads) {
+  if (threads <= 0) return nullptr;
+  if (openblas_set_num_threads) openblas_set_num_threads(threads);
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               static_cast<size_t>(threads));
+}
+
+PyObject* callback_or_null(const py::object& progress) { return progress.is_none() ? nullptr : progress.ptr(); }
+
+// What every task's result shares. `map_key`: "positions" or "uv".
+py::dict result_dict(const Result& r, const char* map_key, const Eigen::MatrixXd& map, const Eigen::VectorXd& distortion,
+                     const Eigen::VectorXd& weights, const char* stage, const nlohmann::json& summary) {
+  py::dict out;
+  out[map_key] = RowMatrixXd(map);
+  out["distortion"] = distortion;
+  out["weights"] = weights;
+  out["status"] = status_name(r.status);
+  out["usable"] = r.usable();
+  out["message"] = r.message;
+  out["iterations"] = r.iterations;
+  // As in the summary: under arap / asap the global steps' certified bound is for field
+  // deviation with their rotations fixed, not a bound on the measure reported.
+  const bool local_global = std::string(stage) == "local-global";
+  out["lower_bound"] = local_global ? kNotApplicable : r.lower_bound;
+  out["fd_step_lower_bound"] = local_global ? r.lower_bound : kNotApplicable;
+  py::list history;
+  for (const IterationRecord& h : r.history) history.append(record_dict(h, stage));
+  out["history"] = history;
+  out["time_s"] = r.time_s;
+  out["summary"] = to_python(summary);
+  return out;
+}
+
+const char* history_stage(const SolverOptions& s, bool local_global) {
+  if (local_global) return "local-global";
+  switch (s.method) {
+    case Method::Direct:
+    case Method::Exact: return "strict";
+    case Method::Relax: return "relax";
+    case Method::Lp: return "lp";
+    case Method::Irls: return "irls";
+    case Method::Linf: return "linf";
+    case Method::L2: return "l2";
+  }
+  return "";
+}
+
+Measure measure_of(const std::string& name) {
+  const auto m = parse_measure(name);
+  if (!m) throw InputError("unknown measure '" + name + "' (use fd, arap, asap, qc or iso)");
+  return *m;
+}
+
+py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::VectorXi& handle_indices,
+                   const RowMatrixXd& handle_positions, const std::string& method, const std::string& measure,
+                   const py::dict& kwargs, const py::object& progress) {
+  const auto t0 = Clock::now();
+  TaskOptions o = parse_options(Task::Deform, "deform", method, kwargs);
+  DeformOptions options;
+  options.measure = measure_of(measure);
+  const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
+  const int dim = mesh.element_type() == ElementType::Tetrahedron ? 3 : 2;
+  const std::vector<Handle> handles = make_handles(handle_indices, handle_positions, mesh.num_vertices(), dim);
+  wire_progress(o, callback_or_null(progress));
+  options.solver = o.solver;
+  options.local_global = o.local_global;
+  options.start = o.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
+  std::optional<DeformOutcome> d;
+  run_released([&] {
+    const auto threads = limit_threads(o.threads);
+    d = deform(mesh, handles, options);
+  });
+  nlohmann::json s = deform_summary(mesh, handles.size(), options, *d, {});
+  s["time_s"] = seconds_since(t0);
+  s["version"] = STRICTMIN_VERSION;
+  const bool lg = options.measure == Measure::Arap || options.measure == Measure::Asap;
+  py::dict out = result_dict(d->result, "positions", d->deformed.V, d->measured.distortion, d->measured.weights,
+                             history_stage(options.solver, lg), s);
+  out["flipped"] = d->measured.flipped;
+  return out;
+}
+
+py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string& method, const std::string& measure,
+                  const py::dict& kwargs, const py::object& progress) {
+  const auto t0 = Clock::now();
+  TaskOptions o = parse_options(Task::Param, "param", method, kwargs);
+  ParamOptions options;
+  options.measure = measure_of(measure);
+  // init names the starting map (tutte, lscm); a method name there is relax's start.
+  if (o.init == "lscm") options.init = ParamInit::Lscm;
+  if (method == "tutte" || method == "lscm") {
+    options.init = method == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;
+    options.init_only = true;
+  }
+  const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
+  wire_progress(o, callback_or_null(progress));
+  options.solver = o.solver;
+  options.local_global = o.local_global;
+  std::optional<ParamOutcome> p;
+  run_released([&] {
+    const auto threads = limit_threads(o.threads);
+    p = parametrize(mesh, options, "mesh");
+  });
+  nlohmann::json s = param_summary(mesh, options, *p, {});
+  s["time_s"] = seconds_since(t0);
+  s["version"] = STRICTMIN_VERSION;
+  const bool lg = !options.init_only && options.measure != Measure::FieldDeviation;
+  py::dict out = result_dict(p->result, "uv", p->result.positions, p->measured.distortion, p->measured.weights,
+                             history_stage(options.solver, lg), s);
+  out["flipped"] = p->measured.flipped;
+  out["flips"] = p->flips;
+  out["boundary"] = p->boundary;
+  out["boundary_overlap"] = p->boundary_overlap;
+  out["initial"] = RowMatrixXd(p->initial);
+  return out;
+}
+
+py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd& V_target,
+                   const std::vector<double>& times, const std::string& method, const py::dict& kwargs,
+                   const py::object& progress) {
+  TaskOptions o = parse_options(Task::Interp, "interp", method, kwargs);
+  if (times.empty()) throw InputError("t needs at least one time in [0, 1]");
+  for (double t : times)
+    if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + std::to_string(t) + " is outside [0, 1]");
+  const Mesh source = make_mesh(V, F, "source", true, nullptr);
+  if (V_target.rows() != V.rows() || V_target.cols() != V.cols())
+    throw InputError("target has " + std::to_string(V_target.rows()) + " by " + std::to_string(V_target.cols()) +
+                     " vertices, source " + std::to_string(V.rows()) + " by " + std::to_string(V.cols()));
+  const Mesh target = make_mesh(V_target, F, "target", false, nullptr);
+  if (o.pin >= source.num_vertices())
+    throw InputError("pin " + std::to_string(o.pin) + ": source has " + std::to_string(source.num_vertices()) +
+                     " vertices (0-based indices)");
+  wire_progress(o, callback_or_null(progress));
+  InterpOptions options;
+  options.solver = o.solver;
+  options.local_global = o.local_global;
+  options.pin_vertex = o.pin;
+  std::optional<Interpolator> interp;
+  std::vector<InterpFrame> frames;
+  std::vector<double> seconds;
+  run_released([&] {
+    const auto threads = limit_threads(o.threads);
+    interp.emplace(source, target, "source", "target");
+    for (double t : times) {
+      const auto tf = Clock::now();
+      frames.push_back(interp->at(t, options));
+      seconds.push_back(seconds_since(tf));
+    }
+  });
+  py::list out;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const InterpFrame& f = frames[i];
+    nlohmann::json s = interp_summary(source, interp->kind(), options, "", "");
+    nlohmann::json frame = interp_frame_summary(f, interp->kind(), options, "");
+    frame["time_s"] = seconds[i];
+    s["frames"] = nlohmann::json::array({frame});
+    s["time_s"] = seconds[i];
+    s["version"] = STRICTMIN_VERSION;
+    py::dict r = result_dict(f.result, "positions", f.mesh.V, f.result.distortion, f.weights, "local-global", s);
+    r["t"] = f.t;
+    out.append(r);
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_tasks(py::module_& m) {
+  m.def("deform", &deform_py, py::arg("V"), py::arg("F"), py::arg("handle_indices"), py::arg("handle_positions"),
+        py::arg("method"), py::arg("measure"), py::arg("options"), py::arg("progress"));
+  m.def("param", &param_py, py::arg("V"), py::arg("F"), py::arg("method"), py::arg("measure"), py::arg("options"),
+        py::arg("progress"));
+  m.def("interp", &interp_py, py::arg("V"), py::arg("F"), py::arg("V_target"), py::arg("t"), py::arg("method"),
+        py::arg("options"), py::arg("progress"));
+}
+
+}  // namespace strictmin::python

@@ -1,0 +1,214 @@
+"""strictmin: maps of triangle and tetrahedral meshes with the least possible worst-case
+distortion (Levi & Zorin 2014), on numpy arrays.
+
+    V, F = strictmin.read_mesh("bimba.obj")
+    r = strictmin.param(V, F, method="linf")
+    print(r, r.summary["max_distortion"])
+
+See docs/python.md for every function, keyword and the result object.
+"""
+
+import numbers
+import sys
+import warnings
+
+import numpy as np
+
+from . import _strictmin
+from ._result import Result
+
+__version__ = _strictmin.__version__
+
+__all__ = ["read_mesh", "write_mesh", "deform", "param", "interp", "distortion", "compare", "Result",
+           "Comparison"]
+
+class Comparison(tuple):
+    """The strict order of d1 against d2, unpacked as ``order, level = compare(...)``:
+    ``order`` -1 (d1 less distorting), 0 (equivalent) or 1 (more distorting); ``level`` the
+    index of the first distortion level that differs (-1 when equivalent). Also
+    ``value_a`` / ``value_b`` and ``area_a`` / ``area_b``: that level's values and areas."""
+
+    def __new__(cls, order, level, value_a=0.0, value_b=0.0, area_a=0.0, area_b=0.0):
+        self = super().__new__(cls, (int(order), int(level)))
+        self.value_a, self.value_b, self.area_a, self.area_b = value_a, value_b, area_a, area_b
+        return self
+
+    order = property(lambda self: self[0])
+    level = property(lambda self: self[1])
+
+    def __reduce__(self):
+        return (Comparison, (self[0], self[1], self.value_a, self.value_b, self.area_a, self.area_b))
+
+    def __repr__(self):
+        return (f"Comparison(order={self[0]}, level={self[1]}, value_a={self.value_a:.6g}, "
+                f"value_b={self.value_b:.6g}, area_a={self.area_a:.6g}, area_b={self.area_b:.6g})")
+
+
+def _vertices(V, name="V"):
+    V = np.asarray(V)
+    if V.dtype.kind not in "fiu":
+        raise ValueError(f"{name} must hold numbers, got dtype {V.dtype}")
+    V = np.ascontiguousarray(V, dtype=np.float64)
+    if V.ndim != 2 or V.shape[1] not in (2, 3):
+        raise ValueError(f"{name} must be #V by 2 or 3, got shape {V.shape}")
+    return V
+
+
+def _indices(F, name="F", ndim=2):
+    F = np.asarray(F)
+    if F.size == 0:
+        F = F.astype(np.int32)
+    if F.dtype.kind == "f":
+        if not np.all(np.isfinite(F)) or np.any(F != np.round(F)):
+            raise ValueError(f"{name} must hold integer indices")
+    elif F.dtype.kind not in "iu":
+        raise ValueError(f"{name} must hold integer indices, got dtype {F.dtype}")
+    if F.ndim != ndim:
+        raise ValueError(f"{name} must have {ndim} dimension(s), got shape {F.shape}")
+    if F.size and (F.min() < -2**31 or F.max() >= 2**31):
+        raise ValueError(f"{name}: index {F.max() if F.max() >= 2**31 else F.min()} out of range")
+    return np.ascontiguousarray(F, dtype=np.int32)
+
+
+def _faces(F):
+    F = _indices(F)
+    if F.shape[1] not in (3, 4):
+        raise ValueError(f"F must be #F by 3 (triangles) or 4 (tets), got shape {F.shape}")
+    return F
+
+
+def _format_record(r):
+    """One progress line, as the command line prints it."""
+    if r.get("stage") == "strict":
+        line = (f"  strict step {r['step']:3d}  k {r['k']:.8g}  fixed {r['fixed_now']} (total {r['fixed_total']})"
+                f"  solves {r['solves']}")
+        if r["level_free_vertices"] >= 0:
+            line += f"  moving vertices {r['level_free_vertices']}"
+        if r["level_iterations"] > 0:
+            line += f"  {r['level_iterations']} interior-point iterations"
+        return line + f"  {r['time_s']:.2f} s"
+    labels = {"linf": "  linf  iter", "lp": "  lp    iter", "irls": "  irls  iter", "relax": "  relax sweep",
+              "local-global": "local-global iter"}
+    line = f"{labels.get(r['stage'], r['stage'])} {r['iteration']:3d}  max {r['max_distortion']:.10g}"
+    for name, key, fmt in (("lower bound", "lower_bound", ".10g"), ("gap", "certified_gap", ".2e"),
+                           ("relative change", "relative_change", ".2e"), ("largest move", "largest_move", ".2e"),
+                           ("decrement", "decrement", ".2e")):
+        if not np.isnan(r[key]):
+            line += f"  {name} {r[key]:{fmt}}"
+    return line + f"  {r['time_s']:.2f} s"
+
+
+def _progress(progress, verbose):
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable (it receives one dict per iteration)")
+    if not verbose:
+        return progress
+
+    def both(record):
+        print(_format_record(record), file=sys.stderr)
+        if progress is not None:
+            progress(record)
+    return both
+
+
+def read_mesh(path):
+    """V, F of a mesh file (.obj, .off, .mesh), validated as the command line validates it.
+
+    V is #V by 2 or 3 (float64), F #F by 3 (triangles) or #F by 4 (tets), 0-based (int32).
+    Raises ValueError naming the file, line and reason; warnings (unreferenced vertices)
+    go to the warnings module."""
+    V, F, notes = _strictmin.read_mesh(str(path))
+    for note in notes:
+        warnings.warn(note, stacklevel=2)
+    return np.ascontiguousarray(V), np.ascontiguousarray(F)
+
+
+def write_mesh(path, V, F, uv=None, quality=None):
+    """Write a mesh by extension: .obj (with uv: vt and f v/vt), .off, .mesh (tets), or .ply
+    (with quality: a per-face `quality` property MeshLab and ParaView colour)."""
+    V = _vertices(V)
+    F = _faces(F)
+    if uv is not None:
+        uv = _vertices(uv, "uv")
+    if quality is not None:
+        quality = np.ascontiguousarray(quality, dtype=np.float64).reshape(-1)
+    _strictmin.write_mesh(str(path), V, F, uv, quality)
+
+
+def deform(V, F, handle_indices, handle_positions, method="linf", measure="fd", *, progress=None, verbose=False,
+           **options):
+    """Deform a planar triangle mesh or a tet mesh so that the handle vertices reach their
+    positions with the least distortion (method: l2, linf, relax, direct, exact, lp, irls;
+    measure: fd, arap, asap). Options: the command line's flags with underscores
+    (gap, max_iterations, sweeps, delta_k, k_min, lg_iterations, start, threads, ...).
+    Returns a Result with ``positions``."""
+    V = _vertices(V)
+    F = _faces(F)
+    idx = _indices(np.asarray(handle_indices).reshape(-1), "handle_indices", ndim=1)
+    pos = np.asarray(handle_positions, dtype=np.float64)
+    if pos.ndim == 1 and idx.size == 1:
+        pos = pos.reshape(1, -1)
+    if pos.ndim != 2:
+        raise ValueError(f"handle_positions must be #H by dim, got shape {pos.shape}")
+    pos = np.ascontiguousarray(pos)
+    return Result(_strictmin.deform(V, F, idx, pos, method, measure, options, _progress(progress, verbose)))
+
+
+def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, verbose=False, **options):
+    """Parametrize a disk-topology surface (one boundary loop) in the plane with a free
+    boundary (method: tutte, lscm, l2, linf, relax, direct, lp, irls; measure: arap, asap,
+    fd; init: tutte or lscm, the starting map). relax starts from ``relax_init`` (l2, lp,
+    irls, linf; default linf). Returns a Result with ``uv``."""
+    V = _vertices(V)
+    F = _faces(F)
+    if "relax_init" in options:
+        relax_init = options.pop("relax_init")
+        if init not in ("tutte", None):
+            raise ValueError("give relax's start as relax_init and the starting map as init, not both as init")
+        init = relax_init
+    if init is not None:
+        options["init"] = init
+    return Result(_strictmin.param(V, F, method, measure, options, _progress(progress, verbose)))
+
+
+def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **options):
+    """Interpolate between two poses of one mesh (same F) at time t in [0, 1] (a float: one
+    Result; a list: a list of Results), local-global around the method. Options: pin
+    ('centroid' or a vertex), lg_iterations (0: no local steps), lg_tolerance and the
+    method's options. Returns Results with ``positions`` and ``t``."""
+    V = _vertices(V)
+    F = _faces(F)
+    V_target = _vertices(V_target, "V_target")
+    single = isinstance(t, numbers.Real) or (isinstance(t, np.ndarray) and t.ndim == 0)
+    times = [float(t)] if single else [float(x) for x in t]
+    results = [Result(r) for r in _strictmin.interp(V, F, V_target, times, method, options,
+                                                   _progress(progress, verbose))]
+    return results[0] if single else results
+
+
+def distortion(V, F, U, measure="arap"):
+    """Per-element distortion of the map sending vertex i of (V, F) to U[i] (a deformation,
+    #V by dim, or a UV layout, #V by 2), or corner j of element e to U[e * corners + j]
+    (seamed layouts). measure: fd, arap, asap, qc (sigma1/sigma2), iso."""
+    V = _vertices(V)
+    F = _faces(F)
+    U = _vertices(U, "U")
+    return np.ascontiguousarray(_strictmin.distortion(V, F, U, measure)["distortion"])
+
+
+def element_weights(V, F):
+    """Rest areas (triangles) or volumes (tets), the weights of the strict order."""
+    V = _vertices(V)
+    F = _faces(F)
+    return np.ascontiguousarray(_strictmin.distortion(V, F, V, "fd")["weights"])
+
+
+def compare(d1, d2, weights=None, value_tolerance=1e-6, area_tolerance=1e-9):
+    """The strict order of two distortion vectors of one mesh (paper Section 4): a
+    Comparison whose ``order`` is -1 when d1 is less distorting, 0 equivalent, 1 more, and
+    ``level`` the first differing level (-1 when equivalent). weights: the elements' areas
+    (default: all 1)."""
+    d1 = np.ascontiguousarray(d1, dtype=np.float64).reshape(-1)
+    d2 = np.ascontiguousarray(d2, dtype=np.float64).reshape(-1)
+    w = np.ones_like(d1) if weights is None else np.ascontiguousarray(weights, dtype=np.float64).reshape(-1)
+    return Comparison(*_strictmin.compare(d1, d2, w, float(value_tolerance), float(area_tolerance)))

@@ -1,0 +1,132 @@
+#include "summary.h"
+
+#include <cmath>
+
+#include "strictmin/solvers/strict.h"
+
+namespace strictmin {
+
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
+  s["max_distortion"] = number_or_null(stats.max);
+  s["max_element"] = stats.max_element;
+  s["l2_distortion"] = number_or_null(stats.l2);
+  s["mean_distortion"] = number_or_null(stats.mean);
+  s["flipped"] = stats.flipped;
+}
+
+void add_status_summary(nlohmann::json& s, const Result& r) {
+  s["status"] = status_name(r.status);
+  s["usable"] = r.usable();
+  s["stop_reason"] = r.message;
+  if (!r.message.empty()) s["message"] = r.message;
+}
+
+void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result& r) {
+  s["iterations"] = r.iterations;
+  if (o.method == Method::Linf || o.method == Method::Direct || o.method == Method::Exact ||
+      (o.method == Method::Relax && o.relax_init == Method::Linf))
+    s["lower_bound"] = number_or_null(r.lower_bound);
+  if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
+  // Below delta-k / 4 every level's band of fixed elements is where Algorithm 2 puts it;
+  // null when a level has no certified bound.
+  if (o.method == Method::Direct) s["worst_level_gap"] = number_or_null(worst_level_gap(r));
+  if (o.method == Method::Relax) {
+    s["sweeps"] = r.iterations;
+    s["init"] = method_name(o.relax_init);
+    s["accept_tolerance"] = o.relax.accept_tolerance;
+  }
+  if (o.method == Method::Lp) s["p"] = o.lp.p;
+}
+
+void add_local_global_summary(nlohmann::json& s, const Result& r) {
+  s["local_global_iterations"] = r.iterations;
+  // The global steps' certified bound is for field deviation with their rotations fixed, not
+  // for the ARAP / ASAP measure reported: it moves to its own key, lower_bound is null.
+  if (s.contains("lower_bound")) {
+    s["fd_step_lower_bound"] = s["lower_bound"];
+    s["lower_bound"] = nullptr;
+  }
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& h : r.history) history.push_back({{"iteration", h.iteration}, {"max", h.max_distortion}});
+  s["history"] = history;
+}
+
+nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOptions& options,
+                              const DeformOutcome& d, const SummaryFiles& files) {
+  nlohmann::json s;
+  s["task"] = "deform";
+  s["input"] = files.input;
+  s["output"] = files.output;
+  s["distortion_file"] = files.distortion_file;
+  s["method"] = method_name(options.solver.method);
+  s["measure"] = measure_name(options.measure);
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["handles"] = handles;
+  s["dimension"] = d.problem.image_dim;
+  add_distortion_summary(s, d.measured.stats);
+  add_status_summary(s, d.result);
+  add_solver_summary(s, options.solver, d.result);
+  if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
+  s["solver_time_s"] = d.result.time_s;
+  return s;
+}
+
+nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, const ParamOutcome& p,
+                             const SummaryFiles& files) {
+  nlohmann::json s;
+  s["task"] = "param";
+  s["input"] = files.input;
+  s["output"] = files.output;
+  s["distortion_file"] = files.distortion_file;
+  s["method"] = options.init_only ? init_name(options.init) : method_name(options.solver.method);
+  s["measure"] = measure_name(options.measure);
+  s["init"] = init_name(options.init);
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["boundary_vertices"] = p.boundary.size();
+  add_distortion_summary(s, p.measured.stats);
+  s["flips"] = p.flips;
+  s["boundary_overlap"] = p.boundary_overlap;
+  add_status_summary(s, p.result);
+  if (!options.init_only) {
+    add_solver_summary(s, options.solver, p.result);
+    if (options.measure != Measure::FieldDeviation) add_local_global_summary(s, p.result);
+  }
+  s["init_time_s"] = p.init_time_s;
+  s["solver_time_s"] = p.result.time_s;
+  return s;
+}
+
+nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpOptions& options,
+                              const std::string& source_name, const std::string& target_name) {
+  nlohmann::json s;
+  s["task"] = "interp";
+  s["source"] = source_name;
+  s["target"] = target_name;
+  s["kind"] = interp_kind_name(kind);
+  s["method"] = method_name(options.solver.method);
+  s["elements"] = source.num_elements();
+  s["vertices"] = source.num_vertices();
+  s["pin"] = options.pin_vertex < 0 ? nlohmann::json("centroid") : nlohmann::json(options.pin_vertex);
+  s["lg_iterations_cap"] = options.local_global.max_iterations;
+  s["lg_tolerance"] = options.local_global.relative_change;
+  return s;
+}
+
+nlohmann::json interp_frame_summary(const InterpFrame& f, InterpKind kind, const InterpOptions& options,
+                                    const std::string& output) {
+  nlohmann::json j;
+  j["t"] = f.t;
+  j["output"] = output;
+  add_distortion_summary(j, f.stats);
+  if (kind == InterpKind::Surface) j["flipped"] = nullptr;  // no orientation to flip
+  add_status_summary(j, f.result);
+  add_solver_summary(j, options.solver, f.result);
+  add_local_global_summary(j, f.result);
+  return j;
+}
+
+}  // namespace strictmin

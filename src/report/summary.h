@@ -1,0 +1,59 @@
+#pragma once
+// The summary of a task's run as JSON: the keys of `strictmin ... --summary` (docs/formats.md),
+// built in one place for the command-line tool and the Python module. Keys that depend on
+// the caller's clock (time_s) are added by the caller. A private header (src/): it is not
+// part of the installed API, whose headers need Eigen only.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "strictmin/report/stats.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/interp.h"
+#include "strictmin/tasks/method.h"
+#include "strictmin/tasks/param.h"
+
+namespace strictmin {
+
+// A JSON number, or null for a non-finite value (an infinite distortion, no bound).
+nlohmann::json number_or_null(double x);
+
+// The distortion keys of every summary: max_distortion, max_element, l2_distortion,
+// mean_distortion, flipped.
+void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats);
+
+// status, usable, stop_reason, and message when there is one.
+void add_status_summary(nlohmann::json& s, const Result& r);
+
+// Keys that depend on the method (iterations, lower_bound, levels, worst_level_gap, sweeps, ...).
+void add_solver_summary(nlohmann::json& s, const SolverOptions& options, const Result& r);
+
+// arap / asap: local_global_iterations, fd_step_lower_bound (lower_bound becomes null) and
+// history (the maximum per iteration).
+void add_local_global_summary(nlohmann::json& s, const Result& r);
+
+// What names the run's files in a summary: "" when there is none.
+struct SummaryFiles {
+  std::string input;            // the mesh file (deform: "example:NAME" for a built-in example)
+  std::string output;           // -o
+  std::string distortion_file;  // --distortion
+};
+
+// deform: every key but time_s.
+nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOptions& options,
+                              const DeformOutcome& outcome, const SummaryFiles& files);
+
+// param: every key but time_s. The method is the initial map's name when options.init_only.
+nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, const ParamOutcome& outcome,
+                             const SummaryFiles& files);
+
+// interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
+// lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.
+nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpOptions& options,
+                              const std::string& source_name, const std::string& target_name);
+
+// One entry of interp's frames: every key but time_s. `output` is the frame's file ("" for none).
+nlohmann::json interp_frame_summary(const InterpFrame& frame, InterpKind kind, const InterpOptions& options,
+                                    const std::string& output);
+
+}  // namespace strictmin

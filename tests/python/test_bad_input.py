@@ -1,0 +1,147 @@
+"""Every bad input of the C++ contract raises ValueError with the library's message (the one
+the command line prints); unknown keywords and wrong types raise TypeError."""
+import numpy as np
+import pytest
+
+import strictmin
+from conftest import grid, run_cli, square_handles
+
+
+@pytest.fixture
+def square():
+    n = 3
+    V, F = grid(n)
+    idx, pos = square_handles(V, n)
+    return V, F, idx, pos
+
+
+def test_mesh_arrays(square):
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="V must be #V by 2 or 3"):
+        strictmin.deform(V[:, :1], F, idx, pos)
+    with pytest.raises(ValueError, match="F must be #F by 3"):
+        strictmin.deform(V, F[:, :2], idx, pos)
+    with pytest.raises(ValueError, match="integer"):
+        strictmin.deform(V, F + 0.5, idx, pos)
+    bad = V.copy()
+    bad[2, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        strictmin.deform(bad, F, idx, pos)
+    out = F.copy()
+    out[1, 2] = len(V)
+    with pytest.raises(ValueError, match="out of range"):
+        strictmin.deform(V, out, idx, pos)
+    neg = F.copy()
+    neg[0, 0] = -1
+    with pytest.raises(ValueError, match="out of range"):
+        strictmin.deform(V, neg, idx, pos)
+    rep = F.copy()
+    rep[0, 1] = rep[0, 0]
+    with pytest.raises(ValueError, match="repeated|twice"):
+        strictmin.param(np.column_stack([V, V[:, 0] * V[:, 1]]), rep)
+    flat = V.copy()
+    flat[F[0]] = flat[F[0, 0]]  # collapse one triangle to a point
+    with pytest.raises(ValueError):
+        strictmin.distortion(flat, F, V)
+    with pytest.raises(ValueError, match="empty|no element|no vert"):
+        strictmin.distortion(np.zeros((0, 2)), np.zeros((0, 3), dtype=int), np.zeros((0, 2)))
+
+
+def test_same_message_as_the_cli(tmp_path, square):
+    """A degenerate triangle: the library's message, naming the element, as the tool's."""
+    V, F, idx, pos = square
+    flat = V.copy()
+    flat[5] = flat[1]  # triangle (0, 1, 5) collapses to a segment
+    with pytest.raises(ValueError) as python_error:
+        strictmin.distortion(flat, F, flat)
+    path = tmp_path / "bad.off"
+    path.write_text(f"OFF\n{len(V)} {len(F)} 0\n" + "".join(f"{x!r} {y!r} 0\n" for x, y in flat) +
+                    "".join(f"3 {a} {b} {c}\n" for a, b, c in F))
+    p = run_cli_failing("eval", path, path)
+    reason = str(python_error.value).split(": ", 1)[1]
+    assert reason in p.stderr, (reason, p.stderr)
+    p = run_cli_failing("deform", "--example", "square", "--method", "foo")
+    with pytest.raises(ValueError) as method_error:
+        strictmin.deform(V, F, idx, pos, method="foo")
+    assert str(method_error.value) in p.stderr
+
+
+def run_cli_failing(*args):
+    import subprocess
+    from conftest import CLI
+    if not CLI:
+        pytest.skip("STRICTMIN_CLI is not set (ctest sets it)")
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 1, p.stderr
+    return p
+
+
+def test_handles(square):
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="vertex 99 out of range"):
+        strictmin.deform(V, F, np.append(idx, 99), np.vstack([pos, [0, 0]]))
+    with pytest.raises(ValueError, match="handle_indices but"):
+        strictmin.deform(V, F, idx, pos[:-1])
+    with pytest.raises(ValueError, match="coordinates, the mesh is 2D"):
+        strictmin.deform(V, F, idx, np.column_stack([pos, pos[:, 0]]))
+    nan = pos.copy()
+    nan[0, 0] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        strictmin.deform(V, F, idx, nan)
+    with pytest.raises(ValueError, match="two different targets"):
+        strictmin.deform(V, F, np.append(idx, idx[0]), np.vstack([pos, pos[0] + 1]))
+    with pytest.raises(ValueError, match="no handles"):
+        strictmin.deform(V, F, [], np.zeros((0, 2)))
+    island_V = np.vstack([V, [[5, 5], [6, 5], [5, 6]]])  # a second part, no handle on it
+    island_F = np.vstack([F, [[len(V), len(V) + 1, len(V) + 2]]])
+    with pytest.raises(ValueError, match="has no handle"):
+        strictmin.deform(island_V, island_F, idx, pos)
+
+
+def test_options(square):
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="^gap: .*gap_tolerance must be in \\(0, 1\\) \\(got 2\\)"):
+        strictmin.deform(V, F, idx, pos, gap=2)
+    with pytest.raises(ValueError, match="^delta_k: .*delta_k must be > 0"):
+        strictmin.deform(V, F, idx, pos, method="direct", delta_k=0)
+    with pytest.raises(ValueError, match="^sweeps: "):
+        strictmin.deform(V, F, idx, pos, sweeps=-1)
+    with pytest.raises(ValueError, match="^accept_tolerance: "):
+        strictmin.deform(V, F, idx, pos, accept_tolerance=float("nan"))
+    with pytest.raises(ValueError, match="^threads must be >= 0"):
+        strictmin.deform(V, F, idx, pos, threads=-2)
+    with pytest.raises(ValueError, match="^lg_iterations must be >= 1"):
+        strictmin.deform(V, F, idx, pos, measure="arap", lg_iterations=0)
+    with pytest.raises(ValueError, match="unknown measure 'foo'"):
+        strictmin.deform(V, F, idx, pos, measure="foo")
+    with pytest.raises(ValueError, match="unknown init"):
+        strictmin.deform(V, F, idx, pos, method="relax", init="direct")
+    with pytest.raises(ValueError, match="unknown start"):
+        strictmin.deform(V, F, idx, pos, measure="arap", start="middle")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'gapp'"):
+        strictmin.deform(V, F, idx, pos, gapp=1e-3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'pin'"):
+        strictmin.deform(V, F, idx, pos, pin=3)
+    with pytest.raises(TypeError, match="sweeps must be an integer"):
+        strictmin.deform(V, F, idx, pos, sweeps=2.5)
+    with pytest.raises(TypeError, match="progress must be callable"):
+        strictmin.deform(V, F, idx, pos, progress=3)
+
+
+def test_tasks(square):
+    V, F, idx, pos = square
+    surface = np.column_stack([V, V[:, 0] * V[:, 1]])
+    with pytest.raises(ValueError, match="3D surface"):
+        strictmin.deform(surface, F, idx, np.column_stack([pos]))
+    with pytest.raises(ValueError, match="param minimizes arap, asap or fd"):
+        strictmin.param(surface, F, measure="qc")
+    with pytest.raises(ValueError, match="outside \\[0, 1\\]"):
+        strictmin.interp(V, F, V * 2, 1.5)
+    with pytest.raises(ValueError, match="target has"):
+        strictmin.interp(V, F, V[:-1], 0.5)
+    with pytest.raises(ValueError, match="pin"):
+        strictmin.interp(V, F, V * 2, 0.5, pin=len(V))
+    with pytest.raises(ValueError, match="U has"):
+        strictmin.distortion(V, F, V[:-1])
+    with pytest.raises(ValueError, match="one length"):
+        strictmin.compare(np.ones(3), np.ones(4))
