@@ -117,7 +117,7 @@ class Validator {
         }
     // The test is scale-free, so it is made on the used vertices moved into the unit box
     // (largest side 1): areas and volumes of far larger or smaller meshes (coordinates of
-    // 1e200 or 1e-120) neither overflow nor underflow into "zero area". Half extents first:
+    // 1e160 or 1e-170) neither overflow nor underflow into "zero area". Half extents first:
     // hi - lo itself may overflow.
     double half_extent = 0.0;
     for (Eigen::Index d = 0; d < dim; ++d) half_extent = std::max(half_extent, 0.5 * hi[d] - 0.5 * lo[d]);

@@ -63,6 +63,10 @@ class BadInputs(unittest.TestCase):
             with self.subTest(case=c["id"]):
                 self.assertEqual(c["exit"], 1)
                 self.assertTrue(c["message"], "every case names what the message must contain")
+                # The message must name the input: a file of the command line, a flag or the
+                # value given to it.
+                names = {os.path.basename(a) for a in c["args"]} | set(c["args"])
+                self.assertTrue(names & set(c["message"]), "no file, flag or value among the substrings")
                 for a in c["args"]:
                     if a.startswith("{dir}/"):
                         used.add(a[len("{dir}/"):])
