@@ -9,14 +9,33 @@
 #include "strictmin/problem/parts.h"
 
 namespace strictmin {
+namespace {
+Eigen::VectorXd stacked_targets(const Problem& p);
+}
 
 std::vector<int> unanchored_components(const Problem& p) {
   return unanchored_parts(element_parts(p), p.fixed);
 }
 
 L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
-  if (p.has_equalities())
-    throw InputError("the L2 solver does not handle linear equality constraints yet");
+  if (p.has_equalities()) {
+    auto basis = std::make_shared<EqualityBasis>(equality_basis(p));
+    if (basis->redundant_residual > 1e-9 * (1.0 + p.eq_rhs.lpNorm<Eigen::Infinity>())) {
+      status_ = SolveStatus::Infeasible;
+      message_ = "the linear equalities contradict each other (residual " + std::to_string(basis->redundant_residual) + ")";
+      return;
+    }
+    basis_ = std::move(basis);
+    assemble(p, p.weights);
+    if (K_.rows() == 0) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    cholesky_.analyze(K_);
+    analyze_s_ = seconds_since(t0);
+    factorize();
+    if (status_ != SolveStatus::Solved)
+      message_ = "the L2 system with the equalities is singular (is every part anchored by a fixed vertex?)";
+    return;
+  }
   assemble(p, p.weights);
   if (K_.rows() == 0) return;
   const std::vector<int> loose = unanchored_components(p);
@@ -38,8 +57,44 @@ bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights
   return K_.rows() == 0 || factorize();
 }
 
+namespace {
+// vec(R_T) stacked in the jacobian_operator's layout.
+Eigen::VectorXd stacked_targets(const Problem& p) {
+  const int n = p.image_dim, m = p.domain_dim;
+  Eigen::VectorXd r(static_cast<Eigen::Index>(p.num_elements()) * n * m);
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < m; ++k) r(static_cast<Eigen::Index>(e) * n * m + i * m + k) = p.targets(e * n + i, k);
+  return r;
+}
+}  // namespace
+
+void L2Solver::assemble_constrained(const Problem& p, const Eigen::VectorXd& element_weights) {
+  const int nm = p.jacobian_size();
+  const Eigen::SparseMatrix<double> G = p.jacobian_operator();
+  Eigen::VectorXd w(G.rows());
+  for (int e = 0; e < p.num_elements(); ++e) w.segment(static_cast<Eigen::Index>(e) * nm, nm).setConstant(element_weights(e));
+  const Eigen::SparseMatrix<double> GZ = G * basis_->Z;
+  ZtGtW_ = Eigen::SparseMatrix<double>(GZ.transpose()) * w.asDiagonal();
+  K_ = (ZtGtW_ * GZ).pruned();
+  Gz0_ = G * basis_->z0;
+}
+
+Eigen::MatrixXd L2Solver::solve_constrained(const Problem& p) const {
+  Eigen::MatrixXd X = p.positions;
+  Eigen::VectorXd q = basis_->z0;
+  if (K_.rows() > 0) {
+    const Eigen::MatrixXd y = cholesky_.solve(ZtGtW_ * (stacked_targets(p) - Gz0_));
+    q += basis_->Z * y.col(0);
+  }
+  for (int v = 0; v < p.num_vertices; ++v)
+    for (int r = 0; r < p.image_dim; ++r) X(v, r) = q(static_cast<Eigen::Index>(v) * p.image_dim + r);
+  return X;
+}
+
 void L2Solver::assemble(const Problem& p, const Eigen::VectorXd& element_weights) {
   element_weights_ = element_weights;
+  if (basis_) return assemble_constrained(p, element_weights);
   const int c = p.corners(), F = p.num_free();
   std::vector<Eigen::Triplet<double>> free_t, fixed_t;
   free_t.reserve(static_cast<size_t>(p.num_elements()) * c * c);
@@ -75,8 +130,9 @@ bool L2Solver::factorize() {
 }
 
 Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
+  if (basis_ && status_ == SolveStatus::Solved) return solve_constrained(p);
   Eigen::MatrixXd X = p.positions;
-  if (status_ != SolveStatus::Solved || K_.rows() == 0) return X;
+  if (status_ != SolveStatus::Solved || K_.rows() == 0 || basis_) return X;
   const int c = p.corners(), n = p.image_dim;
   // B_i = sum_T A_T R_T g_i (one row per free vertex, one column per image coordinate),
   // minus the couplings to the fixed vertices.
