@@ -1,6 +1,7 @@
 // strictmin gparam MESH -o OUT.obj [--field smoothest|FILE] [--field-out FILE]
 //   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -20,6 +21,7 @@ struct GParamArgs {
   std::string mesh, output, field = "smoothest", field_out, measure = "fd";
   double edge_length = 0;
   int quads = 0;
+  bool edge_length_given = false, quads_given = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   SolverArgs solver;
@@ -33,12 +35,12 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (!measure || (*measure != Measure::FieldDeviation && *measure != Measure::Arap))
     throw InputError("--measure: unknown or unavailable measure '" + a.measure + "' for gparam (use fd or arap)");
   o.measure = *measure;
-  if (a.edge_length != 0 && a.quads != 0) throw InputError("give --edge-length or --quads, not both");
-  if (a.edge_length != 0 && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
+  if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
+  if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
     throw InputError("--edge-length must be a positive finite number, got " + std::to_string(a.edge_length));
-  if (a.quads < 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
-  o.edge_length = a.edge_length;
-  if (a.quads > 0) o.quads = a.quads;
+  if (a.quads_given && a.quads <= 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
+  if (a.edge_length_given) o.edge_length = a.edge_length;
+  if (a.quads_given) o.quads = a.quads;
   if (a.field == "curvature")
     throw InputError("--field curvature is not available yet; use smoothest (the default) or a field file");
   if (a.field != "smoothest") {
@@ -143,7 +145,11 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, &exit_code] { exit_code = run_gparam(*args); });
+  cmd->callback([args, cmd, &exit_code] {
+    args->edge_length_given = cmd->count("--edge-length") > 0;
+    args->quads_given = cmd->count("--quads") > 0;
+    exit_code = run_gparam(*args);
+  });
 }
 
 }  // namespace strictmin::cli
