@@ -114,7 +114,7 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   Eigen::SparseMatrix<double> S = A;
   for (int i = 0; i < 2 * F; ++i) S.coeffRef(i, i) += eps * mass(i);
   SerialCholmodScope serial;
-  SparseCholesky cholesky;
+  SparseCholesky cholesky(true);  // AMD: as good as METIS here and much faster to compute
   cholesky.analyze(S);
   CrossField out;
   if (!cholesky.factorize(S)) throw InputError("cross field: the connection Laplacian could not be factorized");

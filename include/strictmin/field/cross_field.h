@@ -36,7 +36,7 @@ struct CrossField {
 };
 
 struct CrossFieldOptions {
-  int max_iterations = 30;
+  int max_iterations = 10;  // Knoeppel et al.: a few iterations give the field; more barely change it
   double tolerance = 1e-11;  // stop when the unit (mass-norm) iterate moves by less
   // Rotate the whole field (E is invariant under a global phase) so that face `pin_face`
   // has a direction along pin_direction (projected into its plane). -1: no pinning.
