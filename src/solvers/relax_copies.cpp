@@ -64,7 +64,9 @@ Groups make_groups(const Problem& p) {
 }
 
 // True when `after` is below `before` in the strict order, values within tol counting equal.
-bool strictly_better(std::vector<double> before, std::vector<double> after, double tol) {
+// Sorts both in place.
+bool strictly_better(std::vector<double>& before, std::vector<double>& after, double tol) {
+  if (*std::max_element(after.begin(), after.end()) < *std::max_element(before.begin(), before.end()) - tol) return true;
   std::sort(before.rbegin(), before.rend());
   std::sort(after.rbegin(), after.rend());
   for (size_t i = 0; i < before.size(); ++i) {
@@ -74,22 +76,47 @@ bool strictly_better(std::vector<double> before, std::vector<double> after, doub
   return false;
 }
 
+Eigen::Matrix2d jacobian2(const Problem& p, int e, const Eigen::MatrixXd& X) {
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const int v = p.elements(e, k);
+    J.noalias() += Eigen::Vector2d(X(v, 0), X(v, 1)) * Eigen::RowVector2d(p.gradients(e * 3 + k, 0), p.gradients(e * 3 + k, 1));
+  }
+  return J;
+}
+
+Eigen::Matrix2d target2(const Problem& p, int e) {
+  Eigen::Matrix2d R;
+  R << p.targets(2 * e, 0), p.targets(2 * e, 1), p.targets(2 * e + 1, 0), p.targets(2 * e + 1, 1);
+  return R;
+}
+
+Eigen::Matrix2d rotation2(const Problem& p, int v) {
+  Eigen::Matrix2d R;
+  R << p.copy_rotation(2 * v, 0), p.copy_rotation(2 * v, 1), p.copy_rotation(2 * v + 1, 0), p.copy_rotation(2 * v + 1, 1);
+  return R;
+}
+
 // One group's 1-ring move; returns how far its base moved.
 double move_group(const Problem& p, const Groups& g, size_t i, double accept_tolerance, Eigen::MatrixXd& X) {
+  thread_local std::vector<RingTerm<2>> terms;
+  thread_local std::vector<double> before, after;
   const int base = g.order[i];
-  const Eigen::Vector2d q0 = X.row(base).transpose();
+  const Eigen::Vector2d q0(X(base, 0), X(base, 1));
   const auto& ring = g.ring[i];
-  std::vector<RingTerm<2>> terms(ring.size());
-  std::vector<double> before(ring.size()), after(ring.size());
+  terms.resize(ring.size());
+  before.resize(ring.size());
+  after.resize(ring.size());
   for (size_t k = 0; k < ring.size(); ++k) {
     const auto [e, j, v] = ring[k];
-    const Eigen::Matrix2d Rv = p.copy_rotation.middleRows(2 * v, 2);
-    const Eigen::Vector2d tv = X.row(v).transpose() - Rv * q0;
-    const Eigen::Matrix2d J = p.jacobian(e, X);
-    const Eigen::Vector2d gj = p.gradients.row(e * 3 + j).transpose();
-    before[k] = (J - p.target(e)).norm();
+    const Eigen::Matrix2d Rv = rotation2(p, v);
+    const Eigen::Vector2d xv(X(v, 0), X(v, 1));
+    const Eigen::Vector2d tv = xv - Rv * q0;
+    const Eigen::Matrix2d D = jacobian2(p, e, X) - target2(p, e);
+    const Eigen::Vector2d gj(p.gradients(e * 3 + j, 0), p.gradients(e * 3 + j, 1));
+    before[k] = D.norm();
     // J - R_T = M + (R_v q + t_v) g^T with M the other corners' part; ||.|| = ||R_v^T (M + t_v g^T) + q g^T||.
-    const Eigen::Matrix2d M = J - p.target(e) - X.row(v).transpose() * gj.transpose() + tv * gj.transpose();
+    const Eigen::Matrix2d M = D - (xv - tv) * gj.transpose();
     terms[k] = ring_term<2>(Rv.transpose() * M, gj, 1.0 / gj.squaredNorm());
   }
   const RingSolution<2> s = solve_one_ring<2>(terms.data(), static_cast<int>(terms.size()));
@@ -98,8 +125,9 @@ double move_group(const Problem& p, const Groups& g, size_t i, double accept_tol
     after[k] = std::sqrt(std::max(0.0, terms[k].a * (s.q - terms[k].centre).squaredNorm() + terms[k].b));
   if (!s.q.allFinite() || !strictly_better(before, after, accept_tolerance * ring_max)) return 0;
   for (int v : g.members[i]) {
-    const Eigen::Matrix2d Rv = p.copy_rotation.middleRows(2 * v, 2);
-    X.row(v) = (Rv * (s.q - q0) + X.row(v).transpose()).transpose();
+    const Eigen::Vector2d d = rotation2(p, v) * (s.q - q0);
+    X(v, 0) += d(0);
+    X(v, 1) += d(1);
   }
   return (s.q - q0).norm();
 }
@@ -125,6 +153,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
     IterationRecord record;
     record.iteration = s;
     record.max_distortion = field_deviation(p, X).maxCoeff();
+    record.gap = move;  // the CLI prints it as the largest move
     record.time_s = elapsed();
     result.history.push_back(record);
     result.iterations = s;
