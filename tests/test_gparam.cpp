@@ -104,7 +104,7 @@ TEST(Polycube, FrameHasEightConvexAndEightSaddleCorners) {
 
 TEST(Polycube, EveryMethodMapsWithZeroDistortion) {
   for (const Mesh& m : {make_cube_surface(3), make_frame_surface(2)}) {
-    for (Method method : {Method::L2, Method::Linf, Method::Relax, Method::Direct, Method::Irls}) {
+    for (Method method : {Method::L2, Method::Linf, Method::Relax, Method::Direct, Method::Irls, Method::Lp}) {
       const GParamOutcome g = global_parametrize(m, polycube_options(method));
       EXPECT_LT(g.measured.stats.max, 1e-9) << method_name(method);
       EXPECT_LT(g.seam_error, 1e-9) << method_name(method);
