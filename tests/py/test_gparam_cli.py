@@ -104,6 +104,18 @@ class GParam(unittest.TestCase):
         self.assertEqual(a["singularity_indices"], b["singularity_indices"])
         self.assertLess(abs(a["max_distortion"] - b["max_distortion"]), 1e-6)
 
+    def test_side_by_side_report(self):
+        """The paper's Figures 8-9: histograms of several methods side by side (strictmin report)."""
+        summaries = []
+        for method in ("l2", "linf", "relax"):
+            summary = self.out(f"{method}.json")
+            run("gparam", self.cube, "-o", self.out(f"{method}.obj"), "--method", method, "--summary", summary,
+                "--distortion", self.out(f"{method}.txt"), "--quiet", check_code=0)
+            summaries += ["--run", summary]
+        report = self.out("side")
+        run("report", report, *summaries, "--quiet", check_code=0)
+        self.assertTrue(os.path.exists(os.path.join(report, "index.html")))
+
     def test_quads_sets_the_edge_length(self):
         s = self.gparam(self.cube, "--quads", "96")
         # area 6 * 2^2 = 24, 96 squares: h = 0.5
