@@ -9,9 +9,6 @@
 #include "strictmin/problem/parts.h"
 
 namespace strictmin {
-namespace {
-Eigen::VectorXd stacked_targets(const Problem& p);
-}
 
 std::vector<int> unanchored_components(const Problem& p) {
   return unanchored_parts(element_parts(p), p.fixed);
@@ -57,38 +54,48 @@ bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights
   return K_.rows() == 0 || factorize();
 }
 
-namespace {
-// vec(R_T) stacked in the jacobian_operator's layout.
-Eigen::VectorXd stacked_targets(const Problem& p) {
-  const int n = p.image_dim, m = p.domain_dim;
-  Eigen::VectorXd r(static_cast<Eigen::Index>(p.num_elements()) * n * m);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < m; ++k) r(static_cast<Eigen::Index>(e) * n * m + i * m + k) = p.targets(e * n + i, k);
-  return r;
-}
-}  // namespace
 
+// The energy separates by image coordinate with one scalar matrix K (see l2.h), so on the
+// full dof vector it is K (x) I_n; the seams' rotations couple the coordinates only through Z.
 void L2Solver::assemble_constrained(const Problem& p, const Eigen::VectorXd& element_weights) {
-  const int nm = p.jacobian_size();
-  const Eigen::SparseMatrix<double> G = p.jacobian_operator();
-  Eigen::VectorXd w(G.rows());
-  for (int e = 0; e < p.num_elements(); ++e) w.segment(static_cast<Eigen::Index>(e) * nm, nm).setConstant(element_weights(e));
-  const Eigen::SparseMatrix<double> GZ = G * basis_->Z;
-  ZtGtW_ = Eigen::SparseMatrix<double>(GZ.transpose()) * w.asDiagonal();
-  K_ = (ZtGtW_ * GZ).pruned();
-  Gz0_ = G * basis_->z0;
+  const int c = p.corners(), n = p.image_dim;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(p.num_elements()) * c * c * n);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const auto g = p.gradients.middleRows(e * c, c);
+    for (int i = 0; i < c; ++i)
+      for (int j = 0; j < c; ++j) {
+        const double kij = element_weights(e) * g.row(i).dot(g.row(j));
+        for (int r = 0; r < n; ++r) t.emplace_back(p.elements(e, i) * n + r, p.elements(e, j) * n + r, kij);
+      }
+  }
+  Eigen::SparseMatrix<double> K_full(static_cast<Eigen::Index>(p.num_vertices) * n, static_cast<Eigen::Index>(p.num_vertices) * n);
+  K_full.setFromTriplets(t.begin(), t.end());
+  Zt_ = basis_->Z.transpose();
+  const Eigen::SparseMatrix<double> KZ = K_full * basis_->Z;
+  K_ = (Zt_ * KZ).pruned();
+  Kz0_ = K_full * basis_->z0;
 }
 
 Eigen::MatrixXd L2Solver::solve_constrained(const Problem& p) const {
+  const int c = p.corners(), n = p.image_dim, m = p.domain_dim;
   Eigen::MatrixXd X = p.positions;
   Eigen::VectorXd q = basis_->z0;
   if (K_.rows() > 0) {
-    const Eigen::MatrixXd y = cholesky_.solve(ZtGtW_ * (stacked_targets(p) - Gz0_));
+    // b = sum_T A_T R_T g_i at the dofs of corner i, as in the unconstrained case.
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(p.num_vertices) * n);
+    for (int e = 0; e < p.num_elements(); ++e)
+      for (int i = 0; i < c; ++i)
+        for (int r = 0; r < n; ++r) {
+          double sum = 0;
+          for (int k = 0; k < m; ++k) sum += p.targets(e * n + r, k) * p.gradients(e * c + i, k);
+          b(static_cast<Eigen::Index>(p.elements(e, i)) * n + r) += element_weights_(e) * sum;
+        }
+    const Eigen::MatrixXd y = cholesky_.solve(Zt_ * (b - Kz0_));
     q += basis_->Z * y.col(0);
   }
   for (int v = 0; v < p.num_vertices; ++v)
-    for (int r = 0; r < p.image_dim; ++r) X(v, r) = q(static_cast<Eigen::Index>(v) * p.image_dim + r);
+    for (int r = 0; r < n; ++r) X(v, r) = q(static_cast<Eigen::Index>(v) * n + r);
   return X;
 }
 

@@ -6,8 +6,8 @@
 // (the cotangent Laplacian for triangles) shared by all coordinates. K is factorized once
 // (CHOLMOD) and kept: new targets only change B (the global step of local-global).
 // With linear equalities (seams) the unknowns are the independent dofs y of
-// problem/equality_basis.h, q = Z y + z0, and the matrix is Z^T (G^T W G) Z (one matrix for
-// both image coordinates, which the seams' rotations couple).
+// problem/equality_basis.h, q = Z y + z0, and the matrix is Z^T (K (x) I) Z (the seams'
+// rotations couple the image coordinates).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -45,8 +45,8 @@ class L2Solver {
   bool factorize();
 
   std::shared_ptr<const EqualityBasis> basis_;  // with equalities only
-  Eigen::SparseMatrix<double> ZtGtW_;           // Z^T G^T W: (y) by (vec J)
-  Eigen::VectorXd Gz0_;                         // G z0
+  Eigen::SparseMatrix<double> Zt_;              // Z^T
+  Eigen::VectorXd Kz0_;                         // (K (x) I) z0
 
   std::vector<int> free_index_;
   Eigen::VectorXd element_weights_;
