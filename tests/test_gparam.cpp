@@ -113,6 +113,17 @@ TEST(Polycube, EveryMethodMapsWithZeroDistortion) {
   }
 }
 
+TEST(Polycube, ArapLocalGlobalKeepsTheZeroDistortionMap) {
+  for (Method method : {Method::L2, Method::Linf}) {
+    GParamOptions o = polycube_options(method);
+    o.measure = Measure::Arap;
+    o.local_global.max_iterations = 3;
+    const GParamOutcome g = global_parametrize(make_frame_surface(2), o);
+    EXPECT_LT(g.measured.stats.max, 1e-9) << method_name(method);
+    EXPECT_LT(g.seam_error, 1e-9) << method_name(method);
+  }
+}
+
 TEST(Cut, CutMeshIsADiskThroughEverySingularity) {
   const Mesh frame = make_frame_surface(3);
   const GParamOutcome g = global_parametrize(frame, polycube_options(Method::L2));

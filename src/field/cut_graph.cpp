@@ -98,7 +98,7 @@ void comb(const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u
 }
 
 // Wedges: the corners around each vertex between two consecutive cut edges of its fan.
-void wedges(const SurfaceGraph& g, const Mesh& mesh, CutGraph& c) {
+void wedges(const SurfaceGraph& g, CutGraph& c) {
   c.corner_wedge.resize(g.num_faces, 3);
   c.wedge_vertex.clear();
   for (int v = 0; v < g.num_vertices; ++v) {
@@ -119,7 +119,6 @@ void wedges(const SurfaceGraph& g, const Mesh& mesh, CutGraph& c) {
       if (s + 1 < m && c.cut[crossed(k)]) c.wedge_vertex.push_back(v);
     }
   }
-  (void)mesh;
 }
 
 // Splits the cut into branches between nodes (singular vertices, cut degree != 2).
@@ -169,14 +168,14 @@ Eigen::Matrix2d quarter_rotation(int k) {
   return R;
 }
 
-CutGraph cut_graph(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u,
+CutGraph cut_graph(const Mesh&, const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u,
                    const std::vector<int>& quarters) {
   CutGraph c;
   std::vector<int> parent_edge;
   const std::vector<int> order = dual_spanning_tree(g, c, parent_edge);
   prune_cut(g, quarters, c);
   comb(g, fr, u, order, parent_edge, c);
-  wedges(g, mesh, c);
+  wedges(g, c);
   branches(g, quarters, c);
   return c;
 }

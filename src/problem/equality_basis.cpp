@@ -68,8 +68,7 @@ class Eliminator {
     substitute(pivot, value);
   }
 
-  EqualityBasis finish(double residual_scale) {
-    (void)residual_scale;
+  EqualityBasis finish() {
     EqualityBasis out;
     std::unordered_map<int, int> column;
     std::vector<int> vars;
@@ -129,7 +128,7 @@ EqualityBasis equality_basis(const Problem& p) {
       row.emplace_back(static_cast<int>(it.col()), it.value());
     elim.add_row(row, p.eq_rhs[r]);
   }
-  return elim.finish(1.0);
+  return elim.finish();
 }
 
 }  // namespace strictmin
