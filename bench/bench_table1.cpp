@@ -3,9 +3,11 @@
 // from the L-infinity map, not counting it) times, beside the paper's row.
 //
 //   bench_table1 [--out table1.json] [--direct-max-faces N] [--sweeps 50] [mesh.obj ...]
+//   bench_table1 --merge a.json b.json ...
 //
 // Without meshes: every .obj in ../shared/data/closed (skips with a message when absent).
-// Prints a markdown table (docs/performance.md) and writes the JSON after every mesh.
+// Prints a markdown table (docs/performance.md; ratio = our time / the paper's) and writes
+// the JSON after every mesh. Rows can be put together from several runs with --merge.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -98,7 +100,7 @@ std::string cell(const nlohmann::json& row, const char* key, const char* fmt = "
 std::string ratio(const nlohmann::json& row, const char* key, double paper) {
   if (!row.contains(key) || !(paper > 0)) return "-";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "1/%.0f", paper / row[key].get<double>());
+  std::snprintf(buf, sizeof buf, "%.2f", row[key].get<double>() / paper);  // ours / paper's
   return buf;
 }
 
@@ -127,12 +129,21 @@ int main(int argc, char** argv) {
   std::string out = "table1.json";
   int direct_max_faces = 10000, sweeps = 50;
   std::vector<fs::path> meshes;
+  bool merge = false;  // the arguments are JSON files of earlier runs: print their rows as one table
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--out" && i + 1 < argc) out = argv[++i];
     else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = std::stoi(argv[++i]);
     else if (a == "--sweeps" && i + 1 < argc) sweeps = std::stoi(argv[++i]);
+    else if (a == "--merge") merge = true;
     else meshes.emplace_back(a);
+  }
+  if (merge) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& f : meshes)
+      for (const auto& r : nlohmann::json::parse(std::ifstream(f))) rows.push_back(r);
+    print_table(rows);
+    return 0;
   }
   if (meshes.empty()) {
     const fs::path dir = fs::path(STRICTMIN_SHARED_DATA) / "closed";
