@@ -19,7 +19,7 @@ namespace {
 
 struct GParamArgs {
   std::string mesh, output, field = "smoothest", field_out, measure = "fd";
-  double edge_length = 0;
+  double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
   bool edge_length_given = false, quads_given = false;
   int lg_iterations = 100;
@@ -41,9 +41,11 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (a.quads_given && a.quads <= 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
   if (a.edge_length_given) o.edge_length = a.edge_length;
   if (a.quads_given) o.quads = a.quads;
-  if (a.field == "curvature")
-    throw InputError("--field curvature is not available yet; use smoothest (the default) or a field file");
-  if (a.field != "smoothest") {
+  o.curvature_field = a.field == "curvature";
+  if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
+    throw InputError("--curvature-alignment must be a positive number, got " + std::to_string(a.curvature_alignment));
+  o.curvature_alignment = a.curvature_alignment;
+  if (a.field != "smoothest" && a.field != "curvature") {
     o.field = read_field_file(a.field, mesh.num_elements());
     o.field_source = a.field;
   }
@@ -74,7 +76,7 @@ nlohmann::json summary(const GParamArgs& a, const GParamOptions& o, const Mesh& 
   s["distortion_file"] = a.out.distortion;
   s["method"] = method_name(o.solver.method);
   s["measure"] = measure_name(o.measure);
-  s["field"] = o.field ? a.field : std::string("smoothest");
+  s["field"] = a.field;
   s["field_energy"] = g.field.energy;
   s["elements"] = mesh.num_elements();
   s["vertices"] = mesh.num_vertices();
@@ -132,7 +134,11 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("mesh", args->mesh, "Input closed surface (.obj/.off triangles, one component, any genus)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, vt per cut-mesh vertex, f v/vt");
   cmd->add_option("--field", args->field,
-                  "smoothest (default: Knoeppel et al. 2013) or a file with one 3D direction per face per line")
+                  "smoothest (default: Knoeppel et al. 2013), curvature (principal directions, smoothed) or a file with one 3D "
+                  "direction per face per line")
+      ->capture_default_str();
+  cmd->add_option("--curvature-alignment", args->curvature_alignment,
+                  "--field curvature: how closely the field follows the principal directions (smaller: smoother)")
       ->capture_default_str();
   cmd->add_option("--field-out", args->field_out, "Write the field used, one direction per face per line");
   cmd->add_option("--edge-length", args->edge_length, "Target edge length h: a surface length h maps to 1 in UV");

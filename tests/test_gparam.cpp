@@ -124,6 +124,17 @@ TEST(Polycube, ArapLocalGlobalKeepsTheZeroDistortionMap) {
   }
 }
 
+// The cube's principal directions are its edges' directions: the curvature-aligned field is
+// the axis-aligned one without any pinning, and the map has no distortion.
+TEST(Polycube, CurvatureFieldFollowsTheEdges) {
+  GParamOptions o;
+  o.curvature_field = true;
+  const GParamOutcome g = global_parametrize(make_cube_surface(3), o);
+  EXPECT_LT(g.field.energy, 1e-9);
+  EXPECT_EQ(g.singular.size(), 8u);
+  EXPECT_LT(g.measured.stats.max, 1e-9);
+}
+
 TEST(Cut, CutMeshIsADiskThroughEverySingularity) {
   const Mesh frame = make_frame_surface(3);
   const GParamOutcome g = global_parametrize(frame, polycube_options(Method::L2));

@@ -141,6 +141,55 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   return out;
 }
 
+// Face shape operators from dihedral angles: S_f = sum over f's edges of theta_e |e| m m^T
+// (m: the edge's in-plane normal, in f's frame); returns (S_xx - S_yy)/2 + i S_xy squared over
+// its modulus: |k1 - k2|/2-weighted e^{4i phi} for a principal direction phi.
+Eigen::VectorXcd curvature_directions(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr) {
+  Eigen::VectorXcd q = Eigen::VectorXcd::Zero(g.num_faces);
+  for (int e = 0; e < g.num_edges(); ++e) {
+    const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
+    const Eigen::Vector3d d = row3(mesh.V, g.edges(e, 1)) - row3(mesh.V, g.edges(e, 0));
+    const Eigen::Vector3d nf = row3(fr.normal, f), nh = row3(fr.normal, h);
+    const double theta = std::atan2(nf.cross(nh).dot(d.normalized()), nf.dot(nh));
+    for (int side : {f, h}) {
+      // In-plane normal of the edge at angle a + pi/2: m m^T has (xx - yy)/2 + i xy = -e^{2ia}/2.
+      const double a = std::atan2(d.dot(row3(fr.y, side)), d.dot(row3(fr.x, side)));
+      q(side) += -0.5 * theta * d.norm() * std::polar(1.0, 2.0 * a);
+    }
+  }
+  for (int f = 0; f < g.num_faces; ++f) q(f) = std::abs(q(f)) > 0 ? q(f) * q(f) / std::abs(q(f)) : Complex(0, 0);
+  return q;
+}
+
+CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, double alignment) {
+  const int F = g.num_faces;
+  Eigen::VectorXcd q = curvature_directions(mesh, g, fr);
+  double mean = 0;
+  for (int f = 0; f < F; ++f) mean += fr.area(f) * std::abs(q(f));
+  mean /= fr.area.sum();
+  if (mean > 0) q /= mean;
+  const Eigen::SparseMatrix<double> A = energy_matrix(mesh, g, fr);
+  Eigen::VectorXd mass(2 * F), rhs(2 * F);
+  for (int f = 0; f < F; ++f) mass(2 * f) = mass(2 * f + 1) = fr.area(f);
+  const double s = alignment * A.diagonal().sum() / mass.sum();
+  Eigen::SparseMatrix<double> S = A;
+  for (int i = 0; i < 2 * F; ++i) S.coeffRef(i, i) += s * mass(i);
+  for (int f = 0; f < F; ++f) {
+    rhs(2 * f) = s * fr.area(f) * q(f).real();
+    rhs(2 * f + 1) = s * fr.area(f) * q(f).imag();
+  }
+  SerialCholmodScope serial;
+  SparseCholesky cholesky(true);
+  cholesky.analyze(S);
+  if (!cholesky.factorize(S)) throw InputError("cross field: the curvature system could not be factorized");
+  const Eigen::VectorXd x = cholesky.solve(rhs).col(0);
+  CrossField out;
+  normalize_per_face(x, out.u);
+  out.iterations = 1;
+  out.energy = field_energy(out.u, mesh, g, fr);
+  return out;
+}
+
 CrossField cross_field_from_directions(const Eigen::MatrixXd& d, const FaceFrames& fr, const std::string& source) {
   const Eigen::Index F = fr.x.rows();
   const std::string name = source.empty() ? std::string("field") : source;

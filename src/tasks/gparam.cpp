@@ -53,13 +53,15 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   if (o.field) {
     out.field = cross_field_from_directions(*o.field, out.frames, o.field_source);
     out.field.energy = field_energy(out.field.u, mesh, out.graph, out.frames);
+  } else if (o.curvature_field) {
+    out.field = curvature_cross_field(mesh, out.graph, out.frames, o.curvature_alignment);
   } else {
     out.field = smoothest_cross_field(mesh, out.graph, out.frames, o.field_options);
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
   out.singular = singularities(out.quarters);
   out.field_time_s = seconds_from(t0);
-  say(o, "field: " + std::string(o.field ? "given" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
+  say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + std::to_string(out.field_time_s) + " s");
 }
 

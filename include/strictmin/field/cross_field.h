@@ -50,6 +50,15 @@ struct CrossFieldOptions {
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
                                  const CrossFieldOptions& options = {});
 
+// A field aligned with the principal curvature directions where the surface is curved and
+// smooth elsewhere (Knoeppel et al. 2013, Section 6): q_f = the 4th power of a principal
+// direction of face f's shape operator (from its edges' dihedral angles), weighted by the
+// anisotropy |k1 - k2| and normalized to area-weighted mean 1; then u solves
+// (E + s M) u = s M q with s = alignment * trace(E) / trace(M), normalized per face. Larger
+// `alignment` follows the curvature more closely, smaller is smoother.
+CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
+                                 double alignment = 0.1);
+
 // A field from one 3D direction per face (#F by 3): each is projected into its face's plane.
 // Throws InputError naming the face (and `source`, line = face + 1) for a non-finite or
 // zero (after projection) direction, or the wrong number of rows.

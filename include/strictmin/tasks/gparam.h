@@ -28,6 +28,8 @@ struct GParamOptions {
   double edge_length = 0;
   int quads = 1000;
   std::optional<Eigen::MatrixXd> field;  // #F by 3 given directions (--field FILE)
+  bool curvature_field = false;          // --field curvature (when no field is given)
+  double curvature_alignment = 0.01;  // --curvature-alignment
   std::string field_source;              // names the field in messages
   CrossFieldOptions field_options;
   SolverOptions solver;
