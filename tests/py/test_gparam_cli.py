@@ -116,6 +116,12 @@ class GParam(unittest.TestCase):
         run("report", report, *summaries, "--quiet", check_code=0)
         self.assertTrue(os.path.exists(os.path.join(report, "index.html")))
 
+    def test_curvature_field(self):
+        s = self.gparam(self.cube, "--field", "curvature")
+        self.assertEqual(s["field"], "curvature")
+        self.assertEqual(s["singularities"], 8)
+        self.assertLess(s["max_distortion"], 1e-6)  # the cube's edges are its principal directions
+
     def test_quads_sets_the_edge_length(self):
         s = self.gparam(self.cube, "--quads", "96")
         # area 6 * 2^2 = 24, 96 squares: h = 0.5
@@ -139,6 +145,10 @@ class GParam(unittest.TestCase):
         self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
         self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])
         self.expect_bad([self.cube, "--edge-length", "-1"], ["--edge-length"])
+        self.expect_bad([self.cube, "--quads", "0"], ["--quads"])
+        self.expect_bad([self.cube, "--field", "curvature", "--curvature-alignment", "0"], ["--curvature-alignment"])
+        self.expect_bad([self.cube, "--measure", "qc"], ["--measure"])
+        self.expect_bad([self.cube, "--field", self.out("missing.txt")], ["missing.txt"])
         field = self.out("f.txt")
         self.gparam(self.cube, "--field-out", field)
         with open(field) as f:
