@@ -15,8 +15,8 @@ namespace strictmin {
 struct GParamMarks {
   std::vector<char> seam_side;       // #F*3: side i (corners i, i+1) of face f lies on the cut
   std::vector<int> corner_index;     // #F*3: the index (quarters) of corner i's vertex, 0 if regular
-  double line_width = 0.04;          // seam width, in barycentric units of a face
-  double dot_radius = 0.35;          // singularity dot, in barycentric units of a face
+  double line_width = 0.07;          // seam width, in barycentric units of a face
+  double dot_radius = 0.5;           // singularity dot, in barycentric units of a face
 };
 
 // mesh: the input surface; distortion: #F; scale: red end of the colour scale.
