@@ -54,7 +54,6 @@ bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights
   return K_.rows() == 0 || factorize();
 }
 
-
 // The energy separates by image coordinate with one scalar matrix K (see l2.h), so on the
 // full dof vector it is K (x) I_n; the seams' rotations couple the coordinates only through Z.
 void L2Solver::assemble_constrained(const Problem& p, const Eigen::VectorXd& element_weights) {
