@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "demo_gparam.h"
 #include "demo_param.h"
 #include "report_output.h"
 #include "solver_options.h"
@@ -150,6 +151,7 @@ int run_demo(const DemoArgs& a) {
     report.sections.push_back(write_section(a.out, in, options));
   }
   report.sections.push_back(write_param_demo_section(a.out, options, a.output, all_solved));
+  report.sections.push_back(write_gparam_demo_section(a.out, options, a.output, all_solved));
   char footer[160];
   std::snprintf(footer, sizeof footer, "Made by `strictmin demo` in %.1f s. Compare your own results with `strictmin "
                 "report DIR --run RESULT.json ...` (docs/report.md).", seconds_since(t0));

@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
       "  strictmin deform mesh.obj --handles handles.txt --method linf -o out.obj\n"
       "  strictmin eval rest.obj mapped.obj --measure arap\n"
       "  strictmin interp source.obj target.obj --t 0.25,0.5,0.75 --method linf -o frame\n"
-      "  strictmin param disk.obj --method linf -o uv.obj\n\n"
+      "  strictmin param disk.obj --method linf -o uv.obj\n"
+      "  strictmin gparam closed.obj --method relax -o uv.obj --report R\n\n"
       "Exit codes: 0 success, 1 bad input, 2 solver did not reach its tolerance (result still written).",
       "strictmin"};
   app.require_subcommand(1);
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   strictmin::cli::add_demo_command(app, exit_code);
   strictmin::cli::add_interp_command(app, exit_code);
   strictmin::cli::add_param_command(app, exit_code);
+  strictmin::cli::add_gparam_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -12,8 +12,24 @@
 namespace strictmin {
 
 L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
-  if (p.has_equalities())
-    throw InputError("the L2 solver does not handle linear equality constraints yet");
+  if (p.has_equalities()) {
+    auto basis = std::make_shared<EqualityBasis>(equality_basis(p));
+    if (basis->redundant_residual > 1e-9 * (1.0 + p.eq_rhs.lpNorm<Eigen::Infinity>())) {
+      status_ = SolveStatus::Infeasible;
+      message_ = "the linear equalities contradict each other (residual " + std::to_string(basis->redundant_residual) + ")";
+      return;
+    }
+    basis_ = std::move(basis);
+    assemble(p, p.weights);
+    if (K_.rows() == 0) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    cholesky_.analyze(K_);
+    analyze_s_ = seconds_since(t0);
+    factorize();
+    if (status_ != SolveStatus::Solved)
+      message_ = "the L2 system with the equalities is singular (is every part anchored by a fixed vertex?)";
+    return;
+  }
   assemble(p, p.weights);
   if (K_.rows() == 0) return;
   const std::vector<int> loose = unanchored_components(p);
@@ -35,8 +51,53 @@ bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights
   return K_.rows() == 0 || factorize();
 }
 
+// The energy separates by image coordinate with one scalar matrix K (see l2.h), so on the
+// full dof vector it is K (x) I_n; the seams' rotations couple the coordinates only through Z.
+void L2Solver::assemble_constrained(const Problem& p, const Eigen::VectorXd& element_weights) {
+  const int c = p.corners(), n = p.image_dim;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(p.num_elements()) * c * c * n);
+  for (int e = 0; e < p.num_elements(); ++e) {
+    const auto g = p.gradients.middleRows(e * c, c);
+    for (int i = 0; i < c; ++i)
+      for (int j = 0; j < c; ++j) {
+        const double kij = element_weights(e) * g.row(i).dot(g.row(j));
+        for (int r = 0; r < n; ++r) t.emplace_back(p.elements(e, i) * n + r, p.elements(e, j) * n + r, kij);
+      }
+  }
+  Eigen::SparseMatrix<double> K_full(static_cast<Eigen::Index>(p.num_vertices) * n, static_cast<Eigen::Index>(p.num_vertices) * n);
+  K_full.setFromTriplets(t.begin(), t.end());
+  Zt_ = basis_->Z.transpose();
+  const Eigen::SparseMatrix<double> KZ = K_full * basis_->Z;
+  K_ = (Zt_ * KZ).pruned();
+  Kz0_ = K_full * basis_->z0;
+}
+
+Eigen::MatrixXd L2Solver::solve_constrained(const Problem& p) const {
+  const int c = p.corners(), n = p.image_dim, m = p.domain_dim;
+  Eigen::MatrixXd X = p.positions;
+  Eigen::VectorXd q = basis_->z0;
+  if (K_.rows() > 0) {
+    // b = sum_T A_T R_T g_i at the dofs of corner i, as in the unconstrained case.
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(p.num_vertices) * n);
+    for (int e = 0; e < p.num_elements(); ++e)
+      for (int i = 0; i < c; ++i)
+        for (int r = 0; r < n; ++r) {
+          double sum = 0;
+          for (int k = 0; k < m; ++k) sum += p.targets(e * n + r, k) * p.gradients(e * c + i, k);
+          b(static_cast<Eigen::Index>(p.elements(e, i)) * n + r) += element_weights_(e) * sum;
+        }
+    const Eigen::MatrixXd y = cholesky_.solve(Zt_ * (b - Kz0_));
+    q += basis_->Z * y.col(0);
+  }
+  for (int v = 0; v < p.num_vertices; ++v)
+    for (int r = 0; r < n; ++r) X(v, r) = q(static_cast<Eigen::Index>(v) * n + r);
+  return X;
+}
+
 void L2Solver::assemble(const Problem& p, const Eigen::VectorXd& element_weights) {
   element_weights_ = element_weights;
+  if (basis_) return assemble_constrained(p, element_weights);
   const int c = p.corners(), F = p.num_free();
   std::vector<Eigen::Triplet<double>> free_t, fixed_t;
   free_t.reserve(static_cast<size_t>(p.num_elements()) * c * c);
@@ -72,8 +133,9 @@ bool L2Solver::factorize() {
 }
 
 Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
+  if (basis_ && status_ == SolveStatus::Solved) return solve_constrained(p);
   Eigen::MatrixXd X = p.positions;
-  if (status_ != SolveStatus::Solved || K_.rows() == 0) return X;
+  if (status_ != SolveStatus::Solved || K_.rows() == 0 || basis_) return X;
   const int c = p.corners(), n = p.image_dim;
   // B_i = sum_T A_T R_T g_i (one row per free vertex, one column per image coordinate),
   // minus the couplings to the fixed vertices.

@@ -7,6 +7,7 @@
 
 #include "solvers/element_assembly.h"
 #include "strictmin/measures/field_deviation.h"
+#include "strictmin/problem/equality_basis.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 #include "strictmin/io/input_error.h"
@@ -21,6 +22,23 @@ double lp_energy(const Eigen::VectorXd& r, const Eigen::VectorXd& weights, int n
   double f = 0;
   for (Eigen::Index e = 0; e < weights.size(); ++e) f += weights(e) * std::pow(r.segment(e * nm, nm).norm() / scale, q);
   return f;
+}
+
+// With seams: the rows of Z (problem/equality_basis.h) for the free dofs, in free_dofs'
+// layout. Newton steps dx = Zf dy keep every equality that the L2 start meets.
+Eigen::SparseMatrix<double> free_basis(const Problem& p) {
+  const EqualityBasis b = equality_basis(p);
+  const std::vector<int> free = p.free_index();
+  const int n = p.image_dim;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < b.Z.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(b.Z, k); it; ++it) {
+      const int v = static_cast<int>(it.row()) / n, r = static_cast<int>(it.row()) % n;
+      if (free[v] >= 0) t.emplace_back(free[v] * n + r, static_cast<int>(it.col()), it.value());
+    }
+  Eigen::SparseMatrix<double> Z(static_cast<Eigen::Index>(p.num_free()) * n, b.Z.cols());
+  Z.setFromTriplets(t.begin(), t.end());
+  return Z;
 }
 
 }  // namespace
@@ -47,6 +65,8 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
   SparseCholesky cholesky;
   Eigen::SparseMatrix<double> H;
   Eigen::VectorXd x = p.free_dofs(r.positions);
+  const bool seams = p.has_equalities();
+  const Eigen::SparseMatrix<double> Zf = seams ? free_basis(p) : Eigen::SparseMatrix<double>();
   int iteration = 0;
   bool converged = true;
 
@@ -83,6 +103,10 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
       // A tiny diagonal shift keeps H positive definite where elements reach D_T = 0.
       const double shift = 1e-12 * H.diagonal().cwiseAbs().maxCoeff();
       for (int i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
+      if (seams) {
+        const Eigen::SparseMatrix<double> full = H.selfadjointView<Eigen::Lower>();
+        H = (Eigen::SparseMatrix<double>(Zf.transpose()) * full * Zf).pruned();
+      }
       if (!cholesky.analyzed()) cholesky.analyze(H);
       if (!cholesky.factorize(H)) {
         // The last accepted iterate stays: a usable map that stopped improving.
@@ -91,7 +115,7 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
         converged = false;
         break;
       }
-      const Eigen::VectorXd dx = -cholesky.solve(grad);
+      const Eigen::VectorXd dx = seams ? Eigen::VectorXd(-(Zf * cholesky.solve(Zf.transpose() * grad))) : Eigen::VectorXd(-cholesky.solve(grad));
       const double slope = grad.dot(dx);
       ++iteration;
       if (-slope / 2 <= options.tolerance * f) stage_done = true;

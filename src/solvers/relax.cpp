@@ -5,6 +5,7 @@
 #include <chrono>
 #include <string>
 
+#include "relax_copies.h"
 #include "relax_sweep.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
@@ -56,6 +57,13 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     throw InputError("relax: the initial map has " + std::to_string(initial.rows()) + " by " +
                      std::to_string(initial.cols()) + " entries, expected " + std::to_string(problem.num_vertices) +
                      " by " + std::to_string(problem.image_dim));
+  if (problem.has_equalities() && problem.copy_base.size() == static_cast<size_t>(problem.num_vertices) &&
+      problem.image_dim == 2) {
+    Eigen::MatrixXd X = initial;
+    for (int v = 0; v < problem.num_vertices; ++v)
+      if (problem.fixed[v]) X.row(v) = problem.positions.row(v);
+    return relax_with_copies(problem, X, options);
+  }
   SweepData data;
   build(problem, data);
   Result result;

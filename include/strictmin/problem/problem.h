@@ -35,6 +35,15 @@ struct Problem {
   Eigen::SparseMatrix<double> eq_matrix;
   Eigen::VectorXd eq_rhs;
 
+  // Copies of one point (global parametrization: the wedges of a seam vertex), for solvers
+  // that move one point at a time (relax). Empty, or #V entries: copy_base[v] is the first
+  // copy of v's group (v itself for a vertex without copies), -1 for a copy that must hold
+  // still while the equalities' translations are held (a singular seam vertex); rows
+  // v*n .. v*n+n-1 of copy_rotation hold R_v with q_v = R_v q_base + t_v. Moving the base
+  // by d moves copy v by R_v d and keeps every equality (docs/gparam.md, "relax").
+  std::vector<int> copy_base;
+  Eigen::MatrixXd copy_rotation;
+
   int num_elements() const { return static_cast<int>(elements.rows()); }
   int corners() const { return domain_dim + 1; }
   int jacobian_size() const { return image_dim * domain_dim; }

@@ -5,10 +5,15 @@
 // normal equations are K Q_free = B with one scalar matrix K_ij = sum_T A_T g_i . g_j
 // (the cotangent Laplacian for triangles) shared by all coordinates. K is factorized once
 // (CHOLMOD) and kept: new targets only change B (the global step of local-global).
+// With linear equalities (seams) the unknowns are the independent dofs y of
+// problem/equality_basis.h, q = Z y + z0, and the matrix is Z^T (K (x) I) Z (the seams'
+// rotations couple the image coordinates).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
+#include "strictmin/problem/equality_basis.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/solvers/sparse_cholesky.h"
@@ -35,7 +40,13 @@ class L2Solver {
 
  private:
   void assemble(const Problem& problem, const Eigen::VectorXd& element_weights);
+  void assemble_constrained(const Problem& problem, const Eigen::VectorXd& element_weights);
+  Eigen::MatrixXd solve_constrained(const Problem& problem) const;
   bool factorize();
+
+  std::shared_ptr<const EqualityBasis> basis_;  // with equalities only
+  Eigen::SparseMatrix<double> Zt_;              // Z^T
+  Eigen::VectorXd Kz0_;                         // (K (x) I) z0
 
   std::vector<int> free_index_;
   Eigen::VectorXd element_weights_;

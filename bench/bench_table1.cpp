@@ -1,0 +1,166 @@
+// The paper's Table 1 on the closed shared meshes (global parametrization, field deviation):
+// field + cut time, L2, L-infinity, direct (k_min 0.1, delta-k 1e-3) and relax (50 sweeps
+// from the L-infinity map, not counting it) times, beside the paper's row.
+//
+//   bench_table1 [--out table1.json] [--direct-max-faces N] [--sweeps 50] [mesh.obj ...]
+//   bench_table1 --merge a.json b.json ...
+//
+// Without meshes: every .obj in ../shared/data/closed (skips with a message when absent).
+// Prints a markdown table (docs/performance.md; ratio = our time / the paper's) and writes
+// the JSON after every mesh. Rows can be put together from several runs with --merge.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/solvers/relax.h"
+#include "strictmin/tasks/gparam.h"
+
+namespace {
+
+using namespace strictmin;
+namespace fs = std::filesystem;
+
+struct PaperRow {
+  double faces_k, linf_s, direct_levels, direct_s, relax_s;
+};
+
+// Table 1 of Levi & Zorin 2014 (Intel Core i7-2720QM laptop, MOSEK), the rows whose models
+// are in the shared data (igea_100k is the paper's igea).
+const std::map<std::string, PaperRow> kPaper = {
+    {"cow", {8, 1.3, 28, 45, 1.2}},           {"elephant", {50, 9, 34, 558, 7}},
+    {"homer", {10, 1, 43, 67, 1.3}},          {"horse", {102, 17, 49, 1480, 13}},
+    {"igea_100k", {100, 19, 99, 3208, 13}},
+};
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json run_mesh(const fs::path& file, int direct_max_faces, int sweeps) {
+  const Mesh mesh = read_mesh(file.string());
+  nlohmann::json row;
+  row["mesh"] = file.stem().string();
+  row["faces"] = mesh.num_elements();
+  GParamOptions o;
+  o.solver.method = Method::L2;
+  const GParamOutcome g = global_parametrize(mesh, o, file.string());
+  row["singularities"] = g.singular.size();
+  row["euler_characteristic"] = g.graph.euler_characteristic();
+  row["field_cut_s"] = g.field_time_s + g.cut_time_s;
+  row["l2_s"] = g.solve_time_s;
+  row["field_cut_l2_s"] = g.field_time_s + g.cut_time_s + g.solve_time_s;
+  row["l2_max"] = g.measured.stats.max;
+
+  SolverOptions linf;
+  linf.method = Method::Linf;
+  auto t0 = std::chrono::steady_clock::now();
+  const Result l = run_method(g.problem, linf);
+  row["linf_s"] = since(t0);
+  row["linf_status"] = status_name(l.status);
+  row["linf_max"] = l.distortion.maxCoeff();
+  row["linf_lower_bound"] = l.lower_bound;
+
+  RelaxOptions ro;
+  ro.sweeps = sweeps;
+  t0 = std::chrono::steady_clock::now();
+  const Result r = relax(g.problem, l.positions, ro);
+  row["relax_s"] = since(t0);
+  row["relax_max"] = r.distortion.maxCoeff();
+
+  if (mesh.num_elements() <= direct_max_faces) {
+    SolverOptions d;
+    d.method = Method::Direct;
+    d.direct.k_min = 0.1;
+    d.direct.delta_k = 1e-3;
+    t0 = std::chrono::steady_clock::now();
+    const Result dr = run_method(g.problem, d);
+    row["direct_s"] = since(t0);
+    row["direct_levels"] = dr.iterations;
+    row["direct_status"] = status_name(dr.status);
+    row["direct_max"] = dr.distortion.maxCoeff();
+  }
+  return row;
+}
+
+std::string cell(const nlohmann::json& row, const char* key, const char* fmt = "%.2f") {
+  if (!row.contains(key)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, row[key].get<double>());
+  return buf;
+}
+
+std::string ratio(const nlohmann::json& row, const char* key, double paper) {
+  if (!row.contains(key) || !(paper > 0)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f", row[key].get<double>() / paper);  // ours / paper's
+  return buf;
+}
+
+void print_table(const nlohmann::json& rows) {
+  std::printf("| mesh | faces | sing. | field+cut+L2 (s) | L-inf (s) | paper | ratio | direct # | direct (s) | paper # | paper (s) | ratio | relax 50 (s) | paper | ratio |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& row : rows) {
+    const std::string name = row["mesh"];
+    const auto p = kPaper.find(name);
+    const bool has = p != kPaper.end();
+    const PaperRow pr = has ? p->second : PaperRow{0, 0, 0, 0, 0};
+    auto paper = [&](double v) { return has ? cell(nlohmann::json{{"v", v}}, "v", "%g") : std::string("-"); };
+    std::printf("| %s | %d | %d | %s | %s (%s) | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", name.c_str(),
+                row["faces"].get<int>(), row["singularities"].get<int>(), cell(row, "field_cut_l2_s").c_str(),
+                cell(row, "linf_s").c_str(), row["linf_status"].get<std::string>().c_str(), paper(pr.linf_s).c_str(),
+                ratio(row, "linf_s", pr.linf_s).c_str(), row.contains("direct_levels") ? std::to_string(row["direct_levels"].get<int>()).c_str() : "-",
+                cell(row, "direct_s").c_str(), paper(pr.direct_levels).c_str(), paper(pr.direct_s).c_str(),
+                ratio(row, "direct_s", pr.direct_s).c_str(), cell(row, "relax_s").c_str(), paper(pr.relax_s).c_str(),
+                ratio(row, "relax_s", pr.relax_s).c_str());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out = "table1.json";
+  int direct_max_faces = 10000, sweeps = 50;
+  std::vector<fs::path> meshes;
+  bool merge = false;  // the arguments are JSON files of earlier runs: print their rows as one table
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--out" && i + 1 < argc) out = argv[++i];
+    else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = std::stoi(argv[++i]);
+    else if (a == "--sweeps" && i + 1 < argc) sweeps = std::stoi(argv[++i]);
+    else if (a == "--merge") merge = true;
+    else meshes.emplace_back(a);
+  }
+  if (merge) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& f : meshes)
+      for (const auto& r : nlohmann::json::parse(std::ifstream(f))) rows.push_back(r);
+    print_table(rows);
+    return 0;
+  }
+  if (meshes.empty()) {
+    const fs::path dir = fs::path(STRICTMIN_SHARED_DATA) / "closed";
+    if (!fs::is_directory(dir)) {
+      std::fprintf(stderr, "bench_table1: no meshes given and no %s; skipping\n", dir.c_str());
+      return 0;
+    }
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".obj") meshes.push_back(e.path());
+    std::sort(meshes.begin(), meshes.end());
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& m : meshes) {
+    std::fprintf(stderr, "bench_table1: %s\n", m.c_str());
+    rows.push_back(run_mesh(m, direct_max_faces, sweeps));
+    std::ofstream(out) << rows.dump(2) << "\n";
+  }
+  print_table(rows);
+  return 0;
+}

@@ -1,0 +1,17 @@
+#pragma once
+// The demo's global parametrization section: a bulged genus-1 polycube frame (16 corners
+// that stay singular) mapped seamlessly with L2, L-infinity and the strict minimizer
+// (relax), each with its surface showing seams, singularities and the unit grid.
+#include <string>
+
+#include "common.h"
+#include "strictmin/report/comparison.h"
+
+namespace strictmin::cli {
+
+// Writes DIR/gparam/ (UV OBJs, pictures) and returns the section; all_solved is cleared
+// when a method did not reach its tolerance.
+ReportSection write_gparam_demo_section(const std::string& dir, const ComparisonOptions& options,
+                                        const OutputOptions& output, bool& all_solved);
+
+}  // namespace strictmin::cli

@@ -1,0 +1,158 @@
+// strictmin gparam MESH -o OUT.obj [--field smoothest|FILE] [--field-out FILE]
+//   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "common.h"
+#include "gparam_report.h"
+#include "report_output.h"
+#include "solver_options.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/tasks/gparam.h"
+
+namespace strictmin::cli {
+namespace {
+
+struct GParamArgs {
+  std::string mesh, output, field = "smoothest", field_out, measure = "fd";
+  double edge_length = 0, curvature_alignment = 0.01;
+  int quads = 0;
+  bool edge_length_given = false, quads_given = false;
+  int lg_iterations = 100;
+  double lg_tolerance = 1e-4;
+  SolverArgs solver;
+  OutputOptions out;
+  ReportArgs report;
+};
+
+GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
+  GParamOptions o;
+  const auto measure = parse_measure(a.measure);
+  if (!measure || (*measure != Measure::FieldDeviation && *measure != Measure::Arap))
+    throw InputError("--measure: unknown or unavailable measure '" + a.measure + "' for gparam (use fd or arap)");
+  o.measure = *measure;
+  if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
+  if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
+    throw InputError("--edge-length must be a positive finite number, got " + std::to_string(a.edge_length));
+  if (a.quads_given && a.quads <= 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
+  if (a.edge_length_given) o.edge_length = a.edge_length;
+  if (a.quads_given) o.quads = a.quads;
+  o.curvature_field = a.field == "curvature";
+  if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
+    throw InputError("--curvature-alignment must be a positive number, got " + std::to_string(a.curvature_alignment));
+  o.curvature_alignment = a.curvature_alignment;
+  if (a.field != "smoothest" && a.field != "curvature") {
+    o.field = read_field_file(a.field, mesh.num_elements());
+    o.field_source = a.field;
+  }
+  o.solver = make_solver_options(a.solver, a.out);
+  o.local_global.max_iterations = a.lg_iterations;
+  o.local_global.relative_change = a.lg_tolerance;
+  if (!a.out.quiet) {
+    o.progress = [](const std::string& line) { std::fprintf(stderr, "gparam %s\n", line.c_str()); };
+    o.local_global.progress = [](const IterationRecord& r) { print_local_global_progress(r, ""); };
+  }
+  return o;
+}
+
+nlohmann::json singularity_list(const std::vector<Singularity>& s) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& x : s) list.push_back({{"vertex", x.vertex}, {"index", x.quarters}});
+  return list;
+}
+
+nlohmann::json summary(const GParamArgs& a, const GParamOptions& o, const Mesh& mesh, const GParamOutcome& g) {
+  nlohmann::json s;
+  s["task"] = "gparam";
+  s["input"] = a.mesh;
+  s["output"] = a.output;
+  s["distortion_file"] = a.out.distortion;
+  s["method"] = method_name(o.solver.method);
+  s["measure"] = measure_name(o.measure);
+  s["field"] = a.field;
+  s["field_energy"] = g.field.energy;
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["euler_characteristic"] = g.graph.euler_characteristic();
+  s["singularities"] = g.singular.size();
+  s["singularity_indices"] = singularity_list(g.singular);
+  s["seam_edges"] = g.cut.num_cut_edges;
+  s["seam_branches"] = g.cut.branches.size();
+  s["cut_mesh_vertices"] = g.cut.num_wedges();
+  s["edge_length"] = g.edge_length;
+  s["seam_error"] = g.seam_error;
+  add_distortion_summary(s, g.measured.stats);
+  add_status_summary(s, g.result);
+  add_solver_summary(s, o.solver, g.result);
+  if (o.measure != Measure::FieldDeviation) add_local_global_summary(s, g.result);
+  s["field_time_s"] = g.field_time_s;
+  s["cut_time_s"] = g.cut_time_s;
+  s["solver_time_s"] = g.solve_time_s;
+  return s;
+}
+
+int run_gparam(const GParamArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto threads = limit_threads(a.out.threads);
+  if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
+  std::vector<std::string> warnings;
+  const Mesh mesh = read_mesh(a.mesh, &warnings);
+  for (const auto& w : warnings) progress(a.out, "warning: " + w);
+  const GParamOptions o = make_options(a, mesh);
+  progress(a.out, "gparam: " + std::to_string(mesh.num_elements()) + " triangles, method " +
+                      method_name(o.solver.method) + ", measure " + a.measure);
+  const GParamOutcome g = global_parametrize(mesh, o, a.mesh);
+  if (!g.result.ok()) progress(a.out, "warning: " + status_name(g.result.status) + ": " + g.result.message);
+  if (!a.field_out.empty()) write_field_file(a.field_out, field_directions(g.field, g.frames));
+  if (!a.output.empty()) write_mesh(a.output, g.mapped);
+  nlohmann::json s = summary(a, o, mesh, g);
+  s["time_s"] = seconds_since(t0);
+  write_outputs(a.out, s, g.measured.distortion);
+  if (!a.report.dir.empty())
+    progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g)));
+  progress(a.out, "gparam: max distortion " + std::to_string(g.measured.stats.max) + ", L2 " +
+                      std::to_string(g.measured.stats.l2) + ", " + std::to_string(g.measured.stats.flipped) +
+                      " flipped, seam error " + std::to_string(g.seam_error) + ", " + status_name(g.result.status));
+  return exit_code_for(g.result.status);
+}
+
+}  // namespace
+
+void add_gparam_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<GParamArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "gparam",
+      "Global seamless parametrization of a closed surface guided by a cross field (the paper's Appendix A): "
+      "field, singularities, cut, seams as linear equalities, then the chosen method; per-corner vt in the OBJ.");
+  cmd->add_option("mesh", args->mesh, "Input closed surface (.obj/.off triangles, one component, any genus)");
+  cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, vt per cut-mesh vertex, f v/vt");
+  cmd->add_option("--field", args->field,
+                  "smoothest (default: Knoeppel et al. 2013), curvature (principal directions, smoothed) or a file with one 3D "
+                  "direction per face per line")
+      ->capture_default_str();
+  cmd->add_option("--curvature-alignment", args->curvature_alignment,
+                  "--field curvature: how closely the field follows the principal directions (smaller: smoother)")
+      ->capture_default_str();
+  cmd->add_option("--field-out", args->field_out, "Write the field used, one direction per face per line");
+  cmd->add_option("--edge-length", args->edge_length, "Target edge length h: a surface length h maps to 1 in UV");
+  cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000)");
+  cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
+      ->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap")->capture_default_str();
+  cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative)")
+      ->capture_default_str();
+  add_solver_options(*cmd, args->solver);
+  add_output_options(*cmd, args->out);
+  add_report_options(*cmd, args->report);
+  cmd->callback([args, cmd, &exit_code] {
+    args->edge_length_given = cmd->count("--edge-length") > 0;
+    args->quads_given = cmd->count("--quads") > 0;
+    exit_code = run_gparam(*args);
+  });
+}
+
+}  // namespace strictmin::cli

@@ -1,0 +1,79 @@
+#pragma once
+// Face-based 4-direction (cross) fields on a closed surface (docs/gparam.md, "The field").
+//
+// Each face f has an orthonormal frame (x_f along its first edge F(f,0) -> F(f,1), y_f = n_f x
+// x_f: the frame of local_frame_coordinates in problem.h, so angles in it are angles in the
+// Problem's element frames). A direction at angle a in f is e^{ia}; a cross is stored as
+// u_f = e^{4ia}, which is the same for the four directions a + k pi/2.
+//
+// Transport: unfolding f and g about their shared edge maps angle a in f to
+// a + transport(e) in g, transport(e) = theta_g - theta_f with theta the edge vector's angle
+// in each frame (from edge_faces(e,0) to edge_faces(e,1)). The smoothness energy
+//   E(u) = sum_e w_e |u_g - e^{4i transport(e)} u_f|^2,  w_e = 3 |e|^2 / (A_f + A_g)
+// is zero exactly for fields that are parallel up to quarter turns.
+#include <Eigen/Core>
+#include <complex>
+#include <optional>
+#include <string>
+
+#include "strictmin/field/surface_graph.h"
+#include "strictmin/mesh/mesh.h"
+
+namespace strictmin {
+
+struct FaceFrames {
+  Eigen::MatrixXd x, y, normal;  // #F by 3, unit
+  Eigen::VectorXd area;          // #F
+  Eigen::VectorXd transport;     // #E: theta_g - theta_f (radians), see above
+};
+
+FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& graph);
+
+struct CrossField {
+  Eigen::VectorXcd u;   // #F, |u_f| = 1: the fourth power of any of the face's four directions
+  double energy = 0;    // E(u) above
+  int iterations = 0;   // inverse power iterations (0 for a given field)
+};
+
+struct CrossFieldOptions {
+  int max_iterations = 10;  // Knoeppel et al.: a few iterations give the field; more barely change it
+  double tolerance = 1e-11;  // stop when the unit (mass-norm) iterate moves by less
+  // Rotate the whole field (E is invariant under a global phase) so that face `pin_face`
+  // has a direction along pin_direction (projected into its plane). -1: no pinning.
+  int pin_face = -1;
+  Eigen::Vector3d pin_direction = Eigen::Vector3d::UnitX();
+};
+
+// The smoothest unit field (Knoeppel et al. 2013): the eigenvector of the smallest eigenvalue
+// of E against the area mass, by inverse power iteration on one sparse Cholesky
+// factorization of (E + eps M), normalized per face.
+CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
+                                 const CrossFieldOptions& options = {});
+
+// A field aligned with the principal curvature directions where the surface is curved and
+// smooth elsewhere (Knoeppel et al. 2013, Section 6): q_f = the 4th power of a principal
+// direction of face f's shape operator (from its edges' dihedral angles), weighted by the
+// anisotropy |k1 - k2| and normalized to area-weighted mean 1; then u solves
+// (E + s M) u = s M q with s = alignment * trace(E) / trace(M), normalized per face. Larger
+// `alignment` follows the curvature more closely, smaller is smoother.
+CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
+                                 double alignment = 0.1);
+
+// A field from one 3D direction per face (#F by 3): each is projected into its face's plane.
+// Throws InputError naming the face (and `source`, line = face + 1) for a non-finite or
+// zero (after projection) direction, or the wrong number of rows.
+CrossField cross_field_from_directions(const Eigen::MatrixXd& directions, const FaceFrames& frames,
+                                       const std::string& source = "");
+
+// Smoothness energy E(u) of any field u (#F).
+double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames);
+
+// One of the four directions of each face (the one at angle arg(u_f)/4), #F by 3, unit.
+Eigen::MatrixXd field_directions(const CrossField& field, const FaceFrames& frames);
+
+// The field file: one line per face, "x y z" (any vector in the face's plane). Reading
+// throws InputError naming the file and line for a malformed line or a wrong line count.
+Eigen::MatrixXd read_field_file(const std::string& path, int num_faces);
+void write_field_file(const std::string& path, const Eigen::MatrixXd& directions);
+
+}  // namespace strictmin

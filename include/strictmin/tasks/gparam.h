@@ -1,0 +1,60 @@
+#pragma once
+// Global seamless parametrization of a closed surface guided by a cross field (the paper's
+// Appendix A; docs/gparam.md): field -> singularities -> cut and matchings -> seamless
+// Problem (seams as linear equalities) -> any method -> per-corner UV.
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "strictmin/field/cross_field.h"
+#include "strictmin/field/cut_graph.h"
+#include "strictmin/field/singularities.h"
+#include "strictmin/field/surface_graph.h"
+#include "strictmin/measures/measures.h"
+#include "strictmin/mesh/mesh.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/local_global.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/tasks/map_distortion.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin {
+
+struct GParamOptions {
+  Measure measure = Measure::FieldDeviation;  // fd (against the field) or arap (local-global)
+  // Target edge length h (surface units); when <= 0, h = sqrt(area / quads).
+  double edge_length = 0;
+  int quads = 1000;
+  std::optional<Eigen::MatrixXd> field;  // #F by 3 given directions (--field FILE)
+  bool curvature_field = false;          // --field curvature (when no field is given)
+  double curvature_alignment = 0.01;  // --curvature-alignment
+  std::string field_source;              // names the field in messages
+  CrossFieldOptions field_options;
+  SolverOptions solver;
+  LocalGlobalOptions local_global;
+  std::function<void(const std::string&)> progress;  // one line per phase
+};
+
+struct GParamOutcome {
+  SurfaceGraph graph;
+  FaceFrames frames;
+  CrossField field;
+  std::vector<int> quarters;  // every vertex's index in quarters
+  std::vector<Singularity> singular;
+  CutGraph cut;
+  Problem problem;            // on the cut mesh, h = 1 (see seamless_problem.h)
+  double edge_length = 0;     // h
+  Result result;              // positions: #wedges by 2 at h = 1
+  Mesh mapped;                // input V and F, UV = result / h, FUV = corner wedges
+  MapDistortion measured;     // fd against the field's frames, or arap (dimensionless)
+  double seam_error = 0;      // largest transition violation, in UV units
+  double field_time_s = 0, cut_time_s = 0, solve_time_s = 0;
+};
+
+// Throws InputError (naming `source`) for a mesh that is not one closed manifold surface,
+// a bad field, a non-positive edge length or quad count, or a measure other than fd/arap.
+GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& options, const std::string& source = "");
+
+}  // namespace strictmin

@@ -1,0 +1,62 @@
+// The cross-field file: one "x y z" line per face (docs/formats.md, docs/gparam.md).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "strictmin/field/cross_field.h"
+#include "strictmin/io/atomic_file.h"
+#include "strictmin/io/input_error.h"
+
+namespace strictmin {
+
+Eigen::MatrixXd read_field_file(const std::string& path, int num_faces) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read field file " + path);
+  std::vector<double> values;
+  std::string text;
+  long line = 0, rows = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    const size_t hash = text.find('#');
+    if (hash != std::string::npos) text.resize(hash);
+    std::istringstream words(text);
+    std::string word;
+    std::vector<double> row;
+    while (words >> word) {
+      char* end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0')
+        throw InputError(located(path, line, "'" + word + "' is not a number"));
+      row.push_back(v);
+    }
+    if (row.empty()) continue;
+    if (row.size() != 3)
+      throw InputError(located(path, line, "expected 3 numbers (a direction in the face's plane), found " +
+                                               std::to_string(row.size())));
+    ++rows;
+    if (rows > num_faces)
+      throw InputError(located(path, line, "more directions than the mesh's " + std::to_string(num_faces) + " faces"));
+    values.insert(values.end(), row.begin(), row.end());
+  }
+  if (rows != num_faces)
+    throw InputError(path + ": " + std::to_string(rows) + " directions for " + std::to_string(num_faces) +
+                     " faces (one per face, one per line)");
+  Eigen::MatrixXd d(num_faces, 3);
+  for (int f = 0; f < num_faces; ++f)
+    for (int k = 0; k < 3; ++k) d(f, k) = values[static_cast<size_t>(f) * 3 + k];
+  return d;
+}
+
+void write_field_file(const std::string& path, const Eigen::MatrixXd& d) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    char buf[96];
+    for (Eigen::Index f = 0; f < d.rows(); ++f) {
+      std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", d(f, 0), d(f, 1), d(f, 2));
+      out << buf;
+    }
+  });
+}
+
+}  // namespace strictmin

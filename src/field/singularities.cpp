@@ -1,0 +1,54 @@
+#include "strictmin/field/singularities.h"
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+namespace strictmin {
+
+Eigen::VectorXd angle_defects(const Mesh& mesh, const SurfaceGraph& g) {
+  Eigen::VectorXd K = Eigen::VectorXd::Constant(g.num_vertices, 2 * std::numbers::pi);
+  for (int f = 0; f < g.num_faces; ++f)
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d p = mesh.V.row(mesh.F(f, i)).transpose();
+      const Eigen::Vector3d a = mesh.V.row(mesh.F(f, (i + 1) % 3)).transpose() - p;
+      const Eigen::Vector3d b = mesh.V.row(mesh.F(f, (i + 2) % 3)).transpose() - p;
+      K(mesh.F(f, i)) -= std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+  return K;
+}
+
+std::vector<int> vertex_indices(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
+                                const Eigen::VectorXcd& u, std::vector<double>* raw) {
+  const Eigen::VectorXd K = angle_defects(mesh, g);
+  std::vector<int> quarters(g.num_vertices, 0);
+  if (raw) raw->assign(g.num_vertices, 0.0);
+  for (int v = 0; v < g.num_vertices; ++v) {
+    double turn = 0;
+    const int begin = g.fan_start[v], end = g.fan_start[v + 1];
+    for (int k = begin; k < end; ++k) {
+      const int f = g.fan_faces[k], i = g.fan_corners[k];
+      const int e = g.face_edges(f, (i + 2) % 3);  // crossed to reach the next face
+      const int next = g.fan_faces[k + 1 < end ? k + 1 : begin];
+      const double t = g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
+      double delta = std::arg(u(next) / (std::polar(1.0, 4.0 * t) * u(f))) / 4.0;  // (-pi/4, pi/4]
+      if (delta <= -std::numbers::pi / 4) delta += std::numbers::pi / 2;
+      turn += delta;
+    }
+    const double q = 4.0 * (K(v) + turn) / (2 * std::numbers::pi);
+    quarters[v] = static_cast<int>(std::lround(q));
+    if (raw) (*raw)[v] = q;
+  }
+  return quarters;
+}
+
+std::vector<Singularity> singularities(const std::vector<int>& quarters) {
+  std::vector<Singularity> out;
+  for (size_t v = 0; v < quarters.size(); ++v)
+    if (quarters[v] != 0) out.push_back({static_cast<int>(v), quarters[v]});
+  return out;
+}
+
+}  // namespace strictmin

@@ -1,0 +1,12 @@
+#pragma once
+// Internal: relaxation sweeps that move each group of copies (seam wedges) as one point.
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/relax.h"
+
+namespace strictmin::relax_detail {
+
+// problem.copy_base must be set (one entry per vertex); fixed vertices and groups with
+// copy_base -1 hold still.
+Result relax_with_copies(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options);
+
+}  // namespace strictmin::relax_detail

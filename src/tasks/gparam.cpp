@@ -1,0 +1,120 @@
+// Global seamless parametrization: the phases, each a named step (docs/gparam.md).
+#include "strictmin/tasks/gparam.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/report/stats.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/tasks/seamless_problem.h"
+
+namespace strictmin {
+namespace {
+
+double seconds_from(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void check_options(const GParamOptions& o) {
+  if (o.measure != Measure::FieldDeviation && o.measure != Measure::Arap)
+    throw InputError("gparam minimizes fd or arap; '" + measure_name(o.measure) + "' is not available");
+  if (!(o.edge_length > 0) && o.edge_length != 0)
+    throw InputError("--edge-length must be a positive number, got " + std::to_string(o.edge_length));
+  if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
+  if (o.edge_length == 0 && o.quads <= 0)
+    throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
+}
+
+void say(const GParamOptions& o, const std::string& line) {
+  if (o.progress) o.progress(line);
+}
+
+// fd against the problem's (field) targets, flips from the Jacobians.
+MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
+  MapDistortion d;
+  const int E = p.num_elements();
+  d.distortion.resize(E);
+  d.flipped = Eigen::VectorXi::Zero(E);
+  d.weights = p.weights;
+  for (int e = 0; e < E; ++e) {
+    const Eigen::MatrixXd J = p.jacobian(e, X);
+    d.distortion(e) = (J - p.target(e)).norm();
+    d.flipped(e) = is_flipped(J) ? 1 : 0;
+  }
+  d.stats = distortion_stats(d.distortion, d.weights);
+  d.stats.flipped = d.flipped.sum();
+  return d;
+}
+
+void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  out.frames = face_frames(mesh, out.graph);
+  if (o.field) {
+    out.field = cross_field_from_directions(*o.field, out.frames, o.field_source);
+    out.field.energy = field_energy(out.field.u, mesh, out.graph, out.frames);
+  } else if (o.curvature_field) {
+    out.field = curvature_cross_field(mesh, out.graph, out.frames, o.curvature_alignment);
+  } else {
+    out.field = smoothest_cross_field(mesh, out.graph, out.frames, o.field_options);
+  }
+  out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
+  out.singular = singularities(out.quarters);
+  out.field_time_s = seconds_from(t0);
+  say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
+             ", " + std::to_string(out.singular.size()) + " singularities, " + std::to_string(out.field_time_s) + " s");
+}
+
+void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  out.cut = cut_graph(mesh, out.graph, out.frames, out.field.u, out.quarters);
+  out.problem = seamless_problem(mesh, out.graph, out.cut);
+  out.cut_time_s = seconds_from(t0);
+  say(o, "cut: " + std::to_string(out.cut.num_cut_edges) + " seam edges in " + std::to_string(out.cut.branches.size()) +
+             " branches, " + std::to_string(out.cut.num_wedges()) + " cut-mesh vertices, " +
+             std::to_string(out.cut_time_s) + " s");
+}
+
+
+void solve(const GParamOptions& o, GParamOutcome& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  say(o, "solve: " + method_name(o.solver.method) + ", measure " + measure_name(o.measure));
+  if (o.measure == Measure::FieldDeviation) {
+    out.result = run_method(out.problem, o.solver);
+  } else {
+    LocalGlobalOptions lg = o.local_global;
+    lg.local = LocalStep::Rotation;
+    const Result start = solve_l2(out.problem);  // the field-guided map starts local-global
+    out.result = local_global(out.problem, start.positions, o.solver, lg);
+  }
+  out.solve_time_s = seconds_from(t0);
+  say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
+}
+
+void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+  const Eigen::MatrixXd& X = out.result.positions;
+  out.measured = o.measure == Measure::FieldDeviation
+                     ? frame_distortion(out.problem, X)
+                     : map_distortion(mesh, corner_images(out.cut.corner_wedge, X), Measure::Arap);
+  out.mapped = mesh;
+  out.mapped.UV = X / out.edge_length;
+  out.mapped.FUV = out.cut.corner_wedge;
+  branch_translations(mesh, out.graph, out.cut, out.mapped.UV, &out.seam_error);
+}
+
+}  // namespace
+
+GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const std::string& source) {
+  check_options(o);
+  GParamOutcome out;
+  out.graph = surface_graph(mesh, source);
+  compute_field(mesh, o, out);
+  compute_cut(mesh, o, out);
+  const double area = out.frames.area.sum();
+  out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
+  solve(o, out);
+  measure(mesh, o, out);
+  return out;
+}
+
+}  // namespace strictmin

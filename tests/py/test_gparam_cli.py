@@ -1,0 +1,180 @@
+"""End-to-end tests of `strictmin gparam` (docs/gparam.md): the summary contract, the
+per-corner UV OBJ, field files, the report, and bad input (exit 1, a message naming the
+problem, no output file). Run by ctest with STRICTMIN_CLI set."""
+import json
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+from cli_support import CLI, DATA, run
+
+
+def cube_obj(n=3, side=2.0, offset=0.0):
+    """The surface of a cube as OBJ text, each side an n by n grid (outward triangles)."""
+    index, verts, faces = {}, [], []
+
+    def vid(p):
+        if p not in index:
+            index[p] = len(verts) + 1
+            verts.append(p)
+        return index[p]
+
+    for axis in range(3):
+        for sign in (0, 1):
+            a, b = (axis + 1) % 3, (axis + 2) % 3
+            if sign == 0:
+                a, b = b, a
+            for i in range(n):
+                for j in range(n):
+                    def pt(ii, jj):
+                        p = [0, 0, 0]
+                        p[axis] = sign * n
+                        p[a], p[b] = ii, jj
+                        return tuple(p)
+                    p00, p10, p11, p01 = vid(pt(i, j)), vid(pt(i + 1, j)), vid(pt(i + 1, j + 1)), vid(pt(i, j + 1))
+                    faces += [(p00, p10, p11), (p00, p11, p01)]
+    lines = [f"v {x * side / n + offset} {y * side / n} {z * side / n}" for x, y, z in verts]
+    lines += [f"f {a} {b} {c}" for a, b, c in faces]
+    return lines, len(verts)
+
+
+KEYS = {"task", "singularities", "singularity_indices", "euler_characteristic", "seam_edges", "edge_length",
+        "seam_error", "max_distortion", "l2_distortion", "flipped", "status", "method", "measure"}
+
+
+class GParam(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        lines, _ = cube_obj()
+        self.cube = self.write("cube.obj", "\n".join(lines) + "\n")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        p = os.path.join(self.dir, name)
+        with open(p, "w") as f:
+            f.write(text)
+        return p
+
+    def out(self, name):
+        return os.path.join(self.dir, name)
+
+    def gparam(self, *args, code=0):
+        summary = self.out("s.json")
+        run("gparam", *args, "--summary", summary, "--quiet", check_code=code)
+        with open(summary) as f:
+            return json.load(f)
+
+    def test_cube_summary_and_uv(self):
+        out = self.out("uv.obj")
+        for method in ("l2", "linf", "relax"):
+            s = self.gparam(self.cube, "-o", out, "--method", method, "--edge-length", "0.5")
+            self.assertTrue(KEYS <= set(s), KEYS - set(s))
+            self.assertEqual(s["task"], "gparam")
+            self.assertEqual(s["euler_characteristic"], 2)
+            self.assertEqual(s["singularities"], 8)
+            self.assertEqual(sorted(x["index"] for x in s["singularity_indices"]), [1] * 8)
+            self.assertEqual(s["edge_length"], 0.5)
+            self.assertLess(s["seam_error"], 1e-9)
+            # The axis-aligned field of a cube is exact up to a global angle: no distortion.
+            self.assertLess(s["max_distortion"], 1e-6, method)
+            self.assertEqual(s["status"], "solved")
+            if method == "linf":
+                self.assertIn("lower_bound", s)
+            if method == "relax":
+                self.assertIn("sweeps", s)
+        with open(out) as f:
+            text = f.read().split("\n")
+        vts = [l for l in text if l.startswith("vt ")]
+        fs = [l for l in text if l.startswith("f ")]
+        self.assertEqual(len(vts), s["cut_mesh_vertices"])
+        self.assertEqual(len(fs), s["elements"])
+        self.assertTrue(all("/" in l for l in fs))
+
+    def test_field_round_trip(self):
+        field = self.out("field.txt")
+        a = self.gparam(self.cube, "--field-out", field)
+        with open(field) as f:
+            self.assertEqual(len([l for l in f if l.strip()]), a["elements"])
+        b = self.gparam(self.cube, "--field", field)
+        self.assertEqual(a["singularity_indices"], b["singularity_indices"])
+        self.assertLess(abs(a["max_distortion"] - b["max_distortion"]), 1e-6)
+
+    def test_side_by_side_report(self):
+        """The paper's Figures 8-9: histograms of several methods side by side (strictmin report)."""
+        summaries = []
+        for method in ("l2", "linf", "relax"):
+            summary = self.out(f"{method}.json")
+            run("gparam", self.cube, "-o", self.out(f"{method}.obj"), "--method", method, "--summary", summary,
+                "--distortion", self.out(f"{method}.txt"), "--quiet", check_code=0)
+            summaries += ["--run", summary]
+        report = self.out("side")
+        run("report", report, *summaries, "--quiet", check_code=0)
+        self.assertTrue(os.path.exists(os.path.join(report, "index.html")))
+
+    def test_curvature_field(self):
+        s = self.gparam(self.cube, "--field", "curvature")
+        self.assertEqual(s["field"], "curvature")
+        self.assertEqual(s["singularities"], 8)
+        self.assertLess(s["max_distortion"], 1e-6)  # the cube's edges are its principal directions
+
+    def test_quads_sets_the_edge_length(self):
+        s = self.gparam(self.cube, "--quads", "96")
+        # area 6 * 2^2 = 24, 96 squares: h = 0.5
+        self.assertAlmostEqual(s["edge_length"], 0.5, places=12)
+
+    def expect_bad(self, args, words):
+        out = self.out("bad.obj")
+        p = run("gparam", *args, "-o", out, check_code=1)
+        for w in words:
+            self.assertIn(w, p.stderr)
+        self.assertFalse(os.path.exists(out), "an output file was written")
+
+    def test_bad_inputs(self):
+        lines, nv = cube_obj()
+        two = lines + [l for l in cube_obj(offset=5.0)[0] if l.startswith("v ")]
+        two += [f"f {' '.join(str(int(i) + nv) for i in l.split()[1:])}" for l in lines if l.startswith("f ")]
+        self.expect_bad([self.write("two.obj", "\n".join(two) + "\n")], ["2 connected components"])
+        open_box = [l for l in lines if not l.startswith("f ")] + [l for l in lines if l.startswith("f ")][2:]
+        self.expect_bad([self.write("open.obj", "\n".join(open_box) + "\n")], ["boundary"])
+        fins = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"
+        self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
+        self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])
+        self.expect_bad([self.cube, "--edge-length", "-1"], ["--edge-length"])
+        self.expect_bad([self.cube, "--quads", "0"], ["--quads"])
+        self.expect_bad([self.cube, "--field", "curvature", "--curvature-alignment", "0"], ["--curvature-alignment"])
+        self.expect_bad([self.cube, "--measure", "qc"], ["--measure"])
+        self.expect_bad([self.cube, "--field", self.out("missing.txt")], ["missing.txt"])
+        field = self.out("f.txt")
+        self.gparam(self.cube, "--field-out", field)
+        with open(field) as f:
+            rows = [l for l in f if l.strip()]
+        self.expect_bad([self.cube, "--field", self.write("short.txt", "".join(rows[:-1]))], ["short.txt", "directions"])
+        self.expect_bad([self.cube, "--field", self.write("zero.txt", "".join(rows[:3] + ["0 0 0\n"] + rows[4:]))],
+                        ["zero.txt", "line 4", "face 3"])
+        self.expect_bad([self.cube, "--field", self.write("nan.txt", "".join(["nan 1 0\n"] + rows[1:]))],
+                        ["nan.txt", "line 1", "not finite"])
+
+    def test_cow_relax_report(self):
+        cow = os.path.join(DATA, "closed", "cow.obj")
+        if not os.path.exists(cow):
+            self.skipTest(f"no {cow}")
+        report = self.out("R")
+        s = self.gparam(cow, "-o", self.out("cow.obj"), "--method", "relax", "--sweeps", "10", "--report", report,
+                        code=None)
+        self.assertEqual(s["euler_characteristic"], 2)
+        self.assertEqual(sum(x["index"] for x in s["singularity_indices"]), 8)
+        self.assertLess(s["seam_error"], 1e-9)
+        for name in ("index.html", "relax_field.png", "relax_grid.png", "summary.json"):
+            self.assertTrue(os.path.exists(os.path.join(report, name)), name)
+
+
+if __name__ == "__main__":
+    if not os.path.exists(CLI) and os.sep in CLI:
+        print(f"no strictmin at {CLI}", file=sys.stderr)
+        sys.exit(77)
+    unittest.main()
