@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <sstream>
 
 #include "strictmin/io/atomic_file.h"
+#include "strictmin/io/input_error.h"
 #include "strictmin/version.h"
 
 // OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
@@ -114,6 +116,22 @@ void print_iteration(const std::string& label, const IterationRecord& r) {
 
 void print_local_global_progress(const IterationRecord& r, const std::string& indent) {
   print_iteration(indent + "local-global iter", r);
+}
+
+void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  for (const auto& [flag, path] : outputs) {
+    if (path.empty() || path == "-") continue;
+    const fs::path parent = fs::path(path).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      throw InputError(flag + " " + path + ": the folder " + parent.string() + " does not exist");
+    if (fs::is_directory(path, ec)) throw InputError(flag + " " + path + ": is a folder, not a file");
+  }
+}
+
+void check_output_paths(const OutputOptions& out) {
+  check_output_paths({{"--summary", out.summary}, {"--distortion", out.distortion}});
 }
 
 void progress(const OutputOptions& out, const std::string& line) {

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "strictmin/report/stats.h"
 #include "report/summary.h"  // private (src/): the CLI and the Python module
@@ -46,6 +48,13 @@ void write_outputs(const OutputOptions& out, const nlohmann::json& summary, cons
 // maximum, then only the fields that apply to the solver (not NaN), the elapsed time.
 void print_iteration(const std::string& label, const IterationRecord& r);
 void print_local_global_progress(const IterationRecord& r, const std::string& indent);
+
+// Bad input before any work: every output file's folder must exist (nothing is written
+// when one cannot be, so no run leaves some outputs behind). Pairs of flag and path; empty
+// paths and "-" are skipped. Throws InputError naming the flag and the path.
+void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
+// The same for the common output options (--summary, --distortion).
+void check_output_paths(const OutputOptions& out);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);

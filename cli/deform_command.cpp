@@ -26,11 +26,13 @@ struct DeformArgs {
 
 int run_deform(const DeformArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_output_paths(a.out);
+  check_output_paths({{"--output", a.output}});
   const auto threads = limit_threads(a.out.threads);
   DeformOptions options;
   options.solver = make_solver_options(a.solver, a.out);
   const auto measure = parse_measure(a.measure);
-  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
+  if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
   options.measure = *measure;
   if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
   options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;

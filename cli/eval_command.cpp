@@ -57,6 +57,8 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
 
 int run_eval(const EvalArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_output_paths(a.out);
+  check_output_paths({{"--output", a.output}});
   const auto threads = limit_threads(a.out.threads);
   std::vector<std::string> warnings;
   const Mesh rest = read_mesh(a.rest, &warnings);
@@ -76,7 +78,7 @@ int run_eval(const EvalArgs& a) {
   std::string measure_text = a.measure;
   if (measure_text == "auto") measure_text = parametrization ? "arap" : "fd";
   const auto measure = parse_measure(measure_text);
-  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use auto, fd, arap, asap, qc or iso)");
+  if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use auto, fd, arap, asap, qc or iso)");
 
   const MapDistortion d = map_distortion(rest, mapped, *measure, a.rest, a.mapped.empty() ? a.rest : a.mapped);
   if (!a.output.empty()) {

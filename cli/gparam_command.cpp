@@ -97,6 +97,8 @@ nlohmann::json summary(const GParamArgs& a, const GParamOptions& o, const Mesh& 
 
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_output_paths(a.out);
+  check_output_paths({{"--output", a.output}, {"--field-out", a.field_out}});
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
   std::vector<std::string> warnings;

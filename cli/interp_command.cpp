@@ -83,6 +83,7 @@ int parse_pin(const std::string& pin) {
 
 int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_output_paths(a.out);
   const auto threads = limit_threads(a.out.threads);
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);

@@ -47,10 +47,12 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
 
 int run_param(ParamArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_output_paths(a.out);
+  check_output_paths({{"--output", a.output}});
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);
-  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use arap, asap or fd)");
+  if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use arap, asap or fd)");
   options.measure = *measure;
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {

@@ -61,7 +61,7 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {
   SolverOptions o;
   const auto method = parse_method(a.method);
-  if (!method) throw InputError("unknown method '" + a.method + "' (use one of: " + method_list() + ")");
+  if (!method) throw InputError("--method: unknown method '" + a.method + "' (use one of: " + method_list() + ")");
   const auto init = parse_method(a.init);
   if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
     throw InputError("unknown --init '" + a.init + "' (use l2, lp, irls or linf)");
