@@ -1,0 +1,264 @@
+#include "strictmin/solvers/qc/sparse_socp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "strictmin/solvers/socp/soc.h"
+#include "strictmin/solvers/sparse_cholesky.h"
+
+namespace strictmin::qc {
+
+struct SparseCholeskyCache::Impl {
+  SparseCholesky cholesky{true};  // AMD: the slack's dense column goes last
+};
+SparseCholeskyCache::SparseCholeskyCache() : impl_(new Impl) {}
+SparseCholeskyCache::~SparseCholeskyCache() { delete impl_; }
+
+namespace {
+
+using socp::apply_w;
+using socp::apply_winv;
+using socp::arrow_solve;
+using socp::jordan_product;
+using socp::max_step;
+using socp::nt_scaling;
+using socp::soc_interior;
+using socp::tail_norm;
+
+double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+// The cones' row offsets.
+std::vector<int> cone_offsets(const SparseSocp& p) {
+  std::vector<int> off(p.dims.size() + 1, 0);
+  for (size_t i = 0; i < p.dims.size(); ++i) off[i + 1] = off[i] + p.dims[i];
+  return off;
+}
+
+// Nesterov-Todd scaling of every cone (socp/soc.h): W_i = beta_i (2 w_i w_i^T - J).
+struct Scaling {
+  Eigen::VectorXd beta, w, lambda;
+};
+
+class Cones {
+ public:
+  explicit Cones(const SparseSocp& p) : dims_(p.dims), off_(cone_offsets(p)) {}
+  int count() const { return static_cast<int>(dims_.size()); }
+  int dim(int i) const { return dims_[i]; }
+  int offset(int i) const { return off_[i]; }
+
+  // Moves u inside every cone: u_i += (||u_i1|| - u_i0 + margin)_+ e.
+  void push_inside(Eigen::VectorXd& u, double margin) const {
+    for (int i = 0; i < count(); ++i) {
+      double* ui = u.data() + off_[i];
+      const double need = (dims_[i] > 1 ? tail_norm(ui, dims_[i]) : 0.0) - ui[0] + margin;
+      if (need > 0) ui[0] += need;
+    }
+  }
+  bool scale(const Eigen::VectorXd& s, const Eigen::VectorXd& z, Scaling& sc) const {
+    sc.beta.resize(count());
+    sc.w.resize(s.size());
+    sc.lambda.resize(s.size());
+    for (int i = 0; i < count(); ++i) {
+      const int o = off_[i], d = dims_[i];
+      if (!nt_scaling(s.data() + o, z.data() + o, d, sc.beta[i], sc.w.data() + o)) return false;
+      apply_w(sc.beta[i], sc.w.data() + o, d, z.data() + o, sc.lambda.data() + o);
+    }
+    return true;
+  }
+  enum class Op { W, WInv };
+  void apply(const Scaling& sc, Op op, const Eigen::VectorXd& u, Eigen::VectorXd& out) const {
+    out.resize(u.size());
+    for (int i = 0; i < count(); ++i) {
+      const int o = off_[i], d = dims_[i];
+      if (op == Op::W)
+        apply_w(sc.beta[i], sc.w.data() + o, d, u.data() + o, out.data() + o);
+      else
+        apply_winv(sc.beta[i], sc.w.data() + o, d, u.data() + o, out.data() + o);
+    }
+  }
+  void product(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) const {
+    out.resize(a.size());
+    for (int i = 0; i < count(); ++i) jordan_product(a.data() + off_[i], b.data() + off_[i], dims_[i], out.data() + off_[i]);
+  }
+  void arrow(const Eigen::VectorXd& l, const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
+    out.resize(l.size());
+    for (int i = 0; i < count(); ++i) arrow_solve(l.data() + off_[i], r.data() + off_[i], dims_[i], out.data() + off_[i]);
+  }
+  Eigen::VectorXd identity(double value) const {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(off_.back());
+    for (int i = 0; i < count(); ++i) e[off_[i]] = value;
+    return e;
+  }
+  double step(const Eigen::VectorXd& l, const Eigen::VectorXd& u) const {
+    double a = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count(); ++i) a = std::min(a, max_step(l.data() + off_[i], u.data() + off_[i], dims_[i]));
+    return a;
+  }
+  // W^{-2} as a block-diagonal sparse matrix (W^{-1} is symmetric: W^{-2} = W^{-1} W^{-1}).
+  Eigen::SparseMatrix<double> winv2(const Scaling& sc) const {
+    std::vector<Eigen::Triplet<double>> t;
+    double col[16], out[16], out2[16];
+    for (int i = 0; i < count(); ++i) {
+      const int o = off_[i], d = dims_[i];
+      for (int j = 0; j < d; ++j) {
+        std::fill(col, col + d, 0.0);
+        col[j] = 1.0;
+        apply_winv(sc.beta[i], sc.w.data() + o, d, col, out);
+        apply_winv(sc.beta[i], sc.w.data() + o, d, out, out2);
+        for (int r = 0; r < d; ++r) t.emplace_back(o + r, o + j, out2[r]);
+      }
+    }
+    Eigen::SparseMatrix<double> m(off_.back(), off_.back());
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  }
+
+ private:
+  std::vector<int> dims_;
+  std::vector<int> off_;
+};
+
+// The normal equations H dx = r with H = G^T W^{-2} G (+ regularisation), refined against
+// the unregularised H.
+class Normal {
+ public:
+  Normal(const SparseSocp& p, const SparseSocpSettings& st, SparseCholesky& chol) : p_(p), st_(st), chol_(chol) {}
+  bool factor(const Eigen::SparseMatrix<double>& w2) {
+    w2_ = &w2;
+    Eigen::SparseMatrix<double> h = p_.G.transpose() * (w2 * p_.G);
+    double mx = 0;
+    for (int j = 0; j < h.cols(); ++j) mx = std::max(mx, h.coeff(j, j));
+    if (!(mx > 0) || !std::isfinite(mx)) return false;
+    for (double delta = st_.regularization; delta < 1e-2; delta *= 100) {
+      Eigen::SparseMatrix<double> reg = h;
+      for (int j = 0; j < h.cols(); ++j) reg.coeffRef(j, j) += delta * mx + 1e-300;
+      if (!chol_.analyzed()) chol_.analyze(reg);
+      if (chol_.factorize(reg)) return true;
+    }
+    return false;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
+    Eigen::VectorXd x = chol_.solve(r);
+    for (int k = 0; k < st_.refinement_steps; ++k) {
+      const Eigen::VectorXd res = r - p_.G.transpose() * (*w2_ * (p_.G * x));
+      if (max_abs(res) <= 1e-15 * std::max(1.0, max_abs(r))) break;
+      x += chol_.solve(res);
+    }
+    return x;
+  }
+
+ private:
+  const SparseSocp& p_;
+  const SparseSocpSettings& st_;
+  SparseCholesky& chol_;
+  const Eigen::SparseMatrix<double>* w2_ = nullptr;
+};
+
+}  // namespace
+
+SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& x0, const SparseSocpSettings& settings,
+                                    const SparseSocpMonitor& monitor, SparseCholeskyCache* cache) {
+  // 1. Start: x from the caller, s = h - G x pushed inside the cones, z = e.
+  const Cones cones(p);
+  std::unique_ptr<SparseCholeskyCache> own;
+  if (!cache) {
+    own = std::make_unique<SparseCholeskyCache>();
+    cache = own.get();
+  }
+  Normal normal(p, settings, cache->impl().cholesky);
+  SparseSocpOutcome out;
+  Eigen::VectorXd x = x0, s = p.h - p.G * x0;
+  const double scale_h = std::max(1.0, max_abs(p.h)), scale_c = std::max(1.0, max_abs(p.c));
+  cones.push_inside(s, 1.0);
+  Eigen::VectorXd z = cones.identity(1.0);
+  const int ncones = cones.count();
+  Scaling sc;
+  for (int it = 0;; ++it) {
+    // 2. Residuals: rx = c + G^T z (dual), rz = G x + s - h (primal); objectives, gap.
+    const Eigen::VectorXd rx = p.c + p.G.transpose() * z;
+    const Eigen::VectorXd rz = p.G * x + s - p.h;
+    out.pobj = p.c.dot(x);
+    out.dobj = -p.h.dot(z);
+    const double gap = s.dot(z);
+    out.pres = max_abs(rz) / scale_h;
+    out.dres = max_abs(rx) / scale_c;
+    out.iterations = it;
+    SparseSocpIterate info{it, &x, &z, out.pobj, out.dobj, gap, out.pres, out.dres};
+    if (monitor && monitor(info)) {
+      out.status = SparseSocpStatus::Stopped;
+      break;
+    }
+    if (out.pres <= settings.feasibility_tolerance && out.dres <= settings.feasibility_tolerance &&
+        gap <= settings.gap_tolerance * std::max(1.0, std::abs(out.pobj))) {
+      out.status = SparseSocpStatus::Converged;
+      break;
+    }
+    if (it >= settings.max_iterations) {
+      out.status = SparseSocpStatus::MaxIterations;
+      out.message = "the cone program reached its iteration limit";
+      break;
+    }
+    // 3. Scaling and the normal equations' factorisation.
+    if (!cones.scale(s, z, sc)) {
+      out.status = SparseSocpStatus::NumericalError;
+      out.message = "an iterate left the cones' interior";
+      break;
+    }
+    const Eigen::SparseMatrix<double> w2 = cones.winv2(sc);
+    if (!normal.factor(w2)) {
+      out.status = SparseSocpStatus::NumericalError;
+      out.message = "the normal equations could not be factorised";
+      break;
+    }
+    const double mu = gap / ncones;
+    // Newton direction for lambda o (W^{-1} ds + W dz) = rc:
+    //   q = lambda \ rc, H dx = -rx - G^T (W^{-1} q + W^{-2} rz), dz = W^{-2} (G dx + W q + rz),
+    //   ds = W (q - W dz).
+    auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& ds, Eigen::VectorXd& dz) {
+      Eigen::VectorXd q, wiq, wq, wdz;
+      cones.arrow(sc.lambda, rc, q);
+      cones.apply(sc, Cones::Op::WInv, q, wiq);
+      dx = normal.solve(-rx - p.G.transpose() * (wiq + w2 * rz));
+      cones.apply(sc, Cones::Op::W, q, wq);
+      dz = w2 * (p.G * dx + wq + rz);
+      cones.apply(sc, Cones::Op::W, dz, wdz);
+      cones.apply(sc, Cones::Op::W, q - wdz, ds);
+    };
+    // 4. Predictor (affine) direction and Mehrotra's centring parameter.
+    Eigen::VectorXd ll, dxa, dsa, dza;
+    cones.product(sc.lambda, sc.lambda, ll);
+    direction(-ll, dxa, dsa, dza);
+    const double alpha_a = std::min({1.0, cones.step(s, dsa), cones.step(z, dza)});
+    const double sigma = std::pow(1.0 - alpha_a, 3);
+    // 5. Combined direction with the second-order term (W^{-1} ds_a) o (W dz_a).
+    Eigen::VectorXd sa, za, so;
+    cones.apply(sc, Cones::Op::WInv, dsa, sa);
+    cones.apply(sc, Cones::Op::W, dza, za);
+    cones.product(sa, za, so);
+    Eigen::VectorXd dx, ds, dz;
+    direction(-ll - so + cones.identity(sigma * mu), dx, ds, dz);
+    if (!dx.allFinite() || !ds.allFinite() || !dz.allFinite()) {
+      out.status = SparseSocpStatus::NumericalError;
+      out.message = "the Newton direction is not finite";
+      break;
+    }
+    // 6. Step: a fraction of the longest step keeping s and z inside.
+    const double alpha = std::min(1.0, settings.step_fraction * std::min(cones.step(s, ds), cones.step(z, dz)));
+    x += alpha * dx;
+    s += alpha * ds;
+    z += alpha * dz;
+    if (!(alpha > 1e-12)) {
+      out.status = SparseSocpStatus::NumericalError;
+      out.message = "the step length vanished";
+      break;
+    }
+  }
+  out.x = x;
+  out.s = s;
+  out.z = z;
+  return out;
+}
+
+}  // namespace strictmin::qc
