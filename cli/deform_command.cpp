@@ -4,11 +4,13 @@
 
 #include "commands.h"
 #include "common.h"
+#include "conformal_summary.h"
 #include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/handles_io.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
+#include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/deform.h"
 #include "strictmin/tasks/examples.h"
 
@@ -86,6 +88,7 @@ int run_deform(const DeformArgs& a) {
   add_status_summary(s, d.result);
   add_solver_summary(s, options.solver, d.result);
   if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
+  if (is_conformal_measure(options.measure)) add_conformal_summary(s, options.solver, d.conformal);
   s["solver_time_s"] = d.result.time_s;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);
@@ -111,7 +114,9 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "'vertex x y [z]' (0-based vertex indices)")
       ->type_name("FILE");
   cmd->add_option("--measure", args->measure,
-                  "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method)")
+                  "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method), qc "
+                  "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)): planar meshes, methods l2 (the L2 fd start map), "
+                  "linf, direct; bisection over convex cones, never a flipped triangle")
       ->capture_default_str();
   cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")

@@ -5,12 +5,14 @@
 
 #include "commands.h"
 #include "common.h"
+#include "conformal_summary.h"
 #include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/report/html_report.h"
+#include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/param.h"
 
 namespace strictmin::cli {
@@ -50,7 +52,7 @@ int run_param(ParamArgs a) {
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);
-  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use arap, asap or fd)");
+  if (!measure) throw InputError("unknown measure '" + a.measure + "' (use arap, asap, fd, qc or iso)");
   options.measure = *measure;
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {
@@ -98,7 +100,10 @@ int run_param(ParamArgs a) {
   add_status_summary(s, p.result);
   if (!options.init_only) {
     add_solver_summary(s, options.solver, p.result);
-    if (options.measure != Measure::FieldDeviation) add_local_global_summary(s, p.result);
+    if (is_conformal_measure(options.measure))
+      add_conformal_summary(s, options.solver, p.conformal);
+    else if (options.measure != Measure::FieldDeviation)
+      add_local_global_summary(s, p.result);
   }
   s["init_time_s"] = p.init_time_s;
   s["solver_time_s"] = p.result.time_s;
@@ -122,7 +127,9 @@ void add_param_command(CLI::App& app, int& exit_code) {
   cmd->add_option("mesh", args->mesh, "Input surface (.obj/.off/.ply triangles, one boundary loop)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, the map as vt, f v/vt");
   cmd->add_option("--measure", args->measure,
-                  "arap or asap (local-global iterations around the method), fd (frames from the starting map)")
+                  "arap or asap (local-global iterations around the method), fd (frames from the starting map), qc "
+                  "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)) with methods l2 (the Tutte/LSCM start), linf, "
+                  "direct: bisection over convex cones, never a flipped triangle")
       ->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap")
       ->capture_default_str();

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <Eigen/LU>
+#include <cstdio>
 #include <random>
 
 #include "strictmin/io/input_error.h"
@@ -68,6 +69,26 @@ TEST(Conformal, AffinePatchQcReachesTheExtremalK) {
   EXPECT_EQ(flipped(p, r.positions), 0);
   EXPECT_GT(st.bisection_steps, 0);
   EXPECT_GT(st.frame_iterations, 0);
+  std::printf("qc affine: K %.12f..%.12f, %d bisection steps, %d frame iterations, %d ipm iterations\n",
+              r.distortion.minCoeff(), r.distortion.maxCoeff(), st.bisection_steps, st.frame_iterations,
+              st.ipm_iterations);
+}
+
+TEST(Conformal, AffinePatchIsoReachesTheExtremalS) {
+  Eigen::MatrixXd start;
+  const Problem p = affine_patch(1.5, 3.0, start);
+  ConformalOptions o;
+  o.measure = Measure::Isometric;
+  o.bisection_tolerance = 1e-9;
+  ConformalStats st;
+  const Result r = solve_conformal_linf(p, start, o, &st);
+  EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
+  const double S = 2.0;  // max(b/a, a/b, 1): sigma1 = 2, sigma2 = 1
+  EXPECT_NEAR(r.distortion.maxCoeff(), S, 1e-6);
+  EXPECT_EQ(flipped(p, r.positions), 0);
+  std::printf("iso affine: S %.12f..%.12f, %d bisection steps, %d frame iterations, %d ipm iterations\n",
+              r.distortion.minCoeff(), r.distortion.maxCoeff(), st.bisection_steps, st.frame_iterations,
+              st.ipm_iterations);
 }
 
 }  // namespace
