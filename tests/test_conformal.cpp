@@ -8,6 +8,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/report/strict_order.h"
 #include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/l2.h"
 #include "test_meshes.h"
@@ -89,6 +90,97 @@ TEST(Conformal, AffinePatchIsoReachesTheExtremalS) {
   std::printf("iso affine: S %.12f..%.12f, %d bisection steps, %d frame iterations, %d ipm iterations\n",
               r.distortion.minCoeff(), r.distortion.maxCoeff(), st.bisection_steps, st.frame_iterations,
               st.ipm_iterations);
+}
+
+// Area with the measure within `fraction` of the maximum (relative).
+double area_near_max(const Problem& p, const Result& r, double fraction) {
+  const double mx = r.distortion.maxCoeff();
+  double area = 0;
+  for (int e = 0; e < p.num_elements(); ++e) area += r.distortion[e] >= mx * (1 - fraction) ? p.weights[e] : 0.0;
+  return area;
+}
+
+// Figure 2's set-up with qc: the unit square, boundary fixed, the centre moved (paper Figure
+// 15: strict qc maps approximate Teichmueller maps, of constant K). Found here: the
+// L-infinity map of the bisection is already nearly constant (its witness is an interior
+// point of a nearly degenerate optimal set, not a vertex as a simplex-like solver returns),
+// so direct keeps the maximum and changes the distribution only slightly: both put most of
+// the area within 1% of the maximum (10 x 10 cells, centre +0.35: linf 0.84, direct 0.85).
+TEST(Conformal, DirectAndLinfQcAreNearlyConstantWithTheSameMaximum) {
+  const Problem p = test_support::figure2(10, 0.35);
+  const Eigen::MatrixXd start = solve_l2(p).positions;
+  ConformalOptions o;
+  ConformalStats ls, ds;
+  const Result linf = solve_conformal_linf(p, start, o, &ls);
+  DirectOptions d;
+  d.delta_k = 1e-3;
+  d.k_min = 1.0;
+  const Result direct = solve_conformal_direct(p, start, o, d, &ds);
+  ASSERT_EQ(linf.status, SolveStatus::Solved) << linf.message;
+  ASSERT_EQ(direct.status, SolveStatus::Solved) << direct.message;
+  // The same maximum: direct's first level is the L-infinity solve (its later levels widen the
+  // fixed bounds by delta_k * 1e-3 relative, solve_direct).
+  EXPECT_NEAR(direct.distortion.maxCoeff(), linf.distortion.maxCoeff(), (1e-6 + 1e-3 * d.delta_k) * linf.distortion.maxCoeff());
+  const double a_linf = area_near_max(p, linf, 0.01), a_direct = area_near_max(p, direct, 0.01);
+  EXPECT_GT(a_linf, 0.8);
+  EXPECT_GT(a_direct, 0.8);
+  EXPECT_EQ(flipped(p, linf.positions), 0);
+  EXPECT_EQ(flipped(p, direct.positions), 0);
+  std::printf("figure 2 qc: K linf %.9f direct %.9f; area within 1%% of max: linf %.4f direct %.4f (of 1); "
+              "%d levels, %d bisection steps\n",
+              linf.distortion.maxCoeff(), direct.distortion.maxCoeff(), a_linf, a_direct, direct.iterations,
+              ds.bisection_steps);
+}
+
+// The L2 map of a large centre shift flips; qc linf and iso linf do not.
+TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
+  const Problem p = test_support::figure2(8, 0.45);
+  const Eigen::MatrixXd start = solve_l2(p).positions;
+  ASSERT_GT(flipped(p, start), 0);
+  for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
+    ConformalOptions o;
+    o.measure = m;
+    const Result r = solve_conformal_linf(p, start, o);
+    EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
+    EXPECT_EQ(flipped(p, r.positions), 0);
+    EXPECT_TRUE(std::isfinite(r.distortion.maxCoeff()));
+  }
+}
+
+// A handle outside the fixed boundary: no orientation-preserving map exists (with its
+// boundary fixed to a simple curve, such a map is a bijection onto the inside).
+TEST(Conformal, HandleOutsideTheFixedBoundaryIsInfeasible) {
+  const Problem p = test_support::figure2(6, 1.0);  // centre (0.5, 0.5) -> (1.5, 0.5)
+  const Result r = solve_conformal_linf(p, solve_l2(p).positions, ConformalOptions{});
+  EXPECT_EQ(r.status, SolveStatus::Infeasible);
+  EXPECT_FALSE(r.message.empty());
+  std::printf("%s\n", r.message.c_str());
+}
+
+// Three handles on one triangle, reversed: that triangle is a flipped constant.
+TEST(Conformal, ReversedTriangleOfHandlesIsInfeasible) {
+  Problem p = make_problem(make_grid(3, 3));
+  std::vector<Handle> h;
+  for (int j = 0; j < 3; ++j) {
+    const int v = p.elements(4, j);
+    Eigen::Vector2d q = p.positions.row(v).transpose();
+    q.x() = -q.x();
+    h.push_back({v, q});
+  }
+  p.fix(h);
+  const Result r = solve_conformal_linf(p, p.positions, ConformalOptions{});
+  EXPECT_EQ(r.status, SolveStatus::Infeasible);
+  EXPECT_NE(r.message.find("element 4"), std::string::npos) << r.message;
+}
+
+TEST(Conformal, TetProblemsAreBadInput) {
+  Problem p = make_problem(make_tet_box(1, 1, 1));
+  p.fix({Handle{0, Eigen::Vector3d::Zero()}});
+  EXPECT_THROW(solve_conformal_linf(p, p.positions, ConformalOptions{}), InputError);
+  ConformalOptions fd;
+  fd.measure = Measure::FieldDeviation;
+  const Problem q = test_support::figure2(4, 0.1);
+  EXPECT_THROW(solve_conformal_linf(q, q.positions, fd), InputError);
 }
 
 }  // namespace

@@ -70,10 +70,25 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   ConformalStats local;
   ConformalStats& st = stats ? *stats : local;
   Result out;
+  // 2. Elements with every vertex fixed are constants: a flipped one has no cure.
+  const Eigen::VectorXd fixed_values = conformal_distortion(problem, options.measure, start);
+  std::vector<char> active(problem.num_elements(), 0);
+  for (int e : parts.element) active[e] = 1;
+  for (int e = 0; e < problem.num_elements(); ++e)
+    if (!active[e] && !std::isfinite(fixed_values[e])) {
+      out.status = SolveStatus::Infeasible;
+      out.positions = start;
+      out.distortion = fixed_values;
+      out.message = "element " + std::to_string(e) +
+                    " has every vertex fixed and the handles flip it (or make it degenerate): no "
+                    "orientation-preserving map exists";
+      out.time_s = seconds_since(t0);
+      return out;
+    }
   double current = qc::free_max(setup, x);  // with frames from x: the measure itself
   bool converged = false;
   std::string message;
-  // 2. Frame iterations: bisection for the frames of the current map, then new frames.
+  // 3. Frame iterations: bisection for the frames of the current map, then new frames.
   for (int f = 1; f <= options.max_frame_iterations; ++f) {
     const auto tf = std::chrono::steady_clock::now();
     qc::BisectionOutcome b =
@@ -117,7 +132,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
       break;
     }
   }
-  // 3. The result: the measure per element, the status by the stopping criterion met.
+  // 4. The result: the measure per element, the status by the stopping criterion met.
   out.positions = problem.with_free_dofs(x);
   out.distortion = conformal_distortion(problem, options.measure, out.positions);
   out.iterations = st.frame_iterations;
