@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -186,6 +187,9 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     out.dres = max_abs(rx) / scale_c;
     out.iterations = it;
     SparseSocpIterate info{it, &x, &z, out.pobj, out.dobj, gap, out.pres, out.dres};
+    if (settings.verbose)
+      std::fprintf(stderr, "socp %3d  pobj %+.10e  dobj %+.10e  gap %.2e  pres %.2e  dres %.2e\n", it, out.pobj,
+                   out.dobj, gap, out.pres, out.dres);
     if (monitor && monitor(info)) {
       out.status = SparseSocpStatus::Stopped;
       break;
@@ -215,16 +219,16 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     const double mu = gap / ncones;
     // Newton direction for lambda o (W^{-1} ds + W dz) = rc:
     //   q = lambda \ rc, H dx = -rx - G^T (W^{-1} q + W^{-2} rz), dz = W^{-2} (G dx + W q + rz),
-    //   ds = W (q - W dz).
+    //   ds = -rz - G dx (the primal equation, exactly: W (q - W dz) is the same in exact
+    //   arithmetic, but W^2 dz cancels badly near the optimum and the primal residual grows).
     auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& ds, Eigen::VectorXd& dz) {
-      Eigen::VectorXd q, wiq, wq, wdz;
+      Eigen::VectorXd q, wiq;
       cones.arrow(sc.lambda, rc, q);
       cones.apply(sc, Cones::Op::WInv, q, wiq);
       dx = normal.solve(-rx - p.G.transpose() * (wiq + w2 * rz));
-      cones.apply(sc, Cones::Op::W, q, wq);
-      dz = w2 * (p.G * dx + wq + rz);
-      cones.apply(sc, Cones::Op::W, dz, wdz);
-      cones.apply(sc, Cones::Op::W, q - wdz, ds);
+      ds = -rz - p.G * dx;
+      dz = wiq - w2 * ds;
+      // dz = W^{-1} q - W^{-2} ds  (from W^{-1} ds + W dz = q)
     };
     // 4. Predictor (affine) direction and Mehrotra's centring parameter.
     Eigen::VectorXd ll, dxa, dsa, dza;

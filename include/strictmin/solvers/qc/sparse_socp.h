@@ -36,6 +36,7 @@ struct SparseSocpSettings {
   double step_fraction = 0.99;
   double regularization = 1e-13;        // relative to the largest diagonal entry
   int refinement_steps = 3;             // iterative refinement of each normal solve
+  bool verbose = false;                 // one line per iteration on stderr
 };
 
 struct SparseSocpIterate {
