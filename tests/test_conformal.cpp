@@ -56,6 +56,7 @@ TEST(Conformal, AffinePatchQcReachesTheExtremalK) {
   ConformalOptions o;
   o.measure = Measure::Quasiconformal;
   o.bisection_tolerance = 1e-9;
+  o.frame_tolerance = 1e-7;
   ConformalStats st;
   double last = INFINITY;
   o.progress = [&](const IterationRecord& r) {
@@ -81,6 +82,7 @@ TEST(Conformal, AffinePatchIsoReachesTheExtremalS) {
   ConformalOptions o;
   o.measure = Measure::Isometric;
   o.bisection_tolerance = 1e-9;
+  o.frame_tolerance = 1e-7;
   ConformalStats st;
   const Result r = solve_conformal_linf(p, start, o, &st);
   EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;

@@ -33,9 +33,11 @@ struct ConformalOptions {
   // bisection_tolerance * max(1, level) (in measure units: K or S).
   double bisection_tolerance = 1e-7;
   int max_bisection_steps = 60;
-  // Frame iterations stop when one lowers the maximum by less than frame_tolerance * max.
-  double frame_tolerance = 1e-6;
-  int max_frame_iterations = 30;
+  // Frame iterations stop when one lowers the maximum by less than frame_tolerance * max
+  // (with the bracket at bisection_tolerance: earlier iterations bisect more coarsely, to a
+  // tenth of the last improvement).
+  double frame_tolerance = 1e-5;
+  int max_frame_iterations = 50;
   // Per-element fixed bounds in measure units (direct's levels; empty or negative: free).
   Eigen::VectorXd element_bounds;
   int max_ipm_iterations = 80;

@@ -87,12 +87,15 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     }
   double current = qc::free_max(setup, x);  // with frames from x: the measure itself
   bool converged = false;
+  double last_improvement = 1.0;  // relative, of the last frame iteration
   std::string message;
   // 3. Frame iterations: bisection for the frames of the current map, then new frames.
   for (int f = 1; f <= options.max_frame_iterations; ++f) {
     const auto tf = std::chrono::steady_clock::now();
-    qc::BisectionOutcome b =
-        qc::bisect(setup, x, 1.0, kCap, options.bisection_tolerance, options.max_bisection_steps);
+    // The bracket needs to be only a little narrower than the frames' last improvement: coarse
+    // while they move the maximum a lot, the final tolerance once they settle.
+    const double tolerance = std::max(options.bisection_tolerance, std::min(1e-3, 0.1 * last_improvement));
+    qc::BisectionOutcome b = qc::bisect(setup, x, 1.0, kCap, tolerance, options.max_bisection_steps);
     st.bisection_steps += b.steps;
     st.ipm_iterations += b.ipm_iterations;
     st.bisection_time_s += seconds_since(tf);
@@ -127,7 +130,8 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     out.history.push_back(rec);
     if (options.progress) options.progress(rec);
     st.frame_time_s += seconds_since(tf);
-    if (improvement <= options.frame_tolerance * current) {
+    last_improvement = std::isfinite(improvement) ? improvement / current : 1.0;
+    if (improvement <= options.frame_tolerance * current && tolerance <= options.bisection_tolerance) {
       converged = b.converged;
       break;
     }
