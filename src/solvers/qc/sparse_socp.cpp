@@ -133,6 +133,7 @@ class Normal {
     for (int j = 0; j < h.cols(); ++j) mx = std::max(mx, h.coeff(j, j));
     if (!(mx > 0) || !std::isfinite(mx)) return false;
     for (double delta = st_.regularization; delta < 1e-2; delta *= 100) {
+      delta_ = delta;
       Eigen::SparseMatrix<double> reg = h;
       for (int j = 0; j < h.cols(); ++j) reg.coeffRef(j, j) += delta * mx + 1e-300;
       if (!chol_.analyzed()) chol_.analyze(reg);
@@ -144,17 +145,22 @@ class Normal {
     Eigen::VectorXd x = chol_.solve(r);
     for (int k = 0; k < st_.refinement_steps; ++k) {
       const Eigen::VectorXd res = r - p_.G.transpose() * (*w2_ * (p_.G * x));
+      last_residual_ = max_abs(res) / std::max(1e-300, max_abs(r));
       if (max_abs(res) <= 1e-15 * std::max(1.0, max_abs(r))) break;
       x += chol_.solve(res);
     }
     return x;
   }
+  double last_residual() const { return last_residual_; }
+  double delta() const { return delta_; }
 
  private:
   const SparseSocp& p_;
   const SparseSocpSettings& st_;
   SparseCholesky& chol_;
   const Eigen::SparseMatrix<double>* w2_ = nullptr;
+  mutable double last_residual_ = 0;
+  double delta_ = 0;
 };
 
 }  // namespace
@@ -176,6 +182,8 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
   Eigen::VectorXd z = cones.identity(1.0);
   const int ncones = cones.count();
   Scaling sc;
+  double best_worst = std::numeric_limits<double>::infinity();
+  int stalled = 0;
   for (int it = 0;; ++it) {
     // 2. Residuals: rx = c + G^T z (dual), rz = G x + s - h (primal); objectives, gap.
     const Eigen::VectorXd rx = p.c + p.G.transpose() * z;
@@ -197,6 +205,17 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     if (out.pres <= settings.feasibility_tolerance && out.dres <= settings.feasibility_tolerance &&
         gap <= settings.gap_tolerance * std::max(1.0, std::abs(out.pobj))) {
       out.status = SparseSocpStatus::Converged;
+      break;
+    }
+    // Stalled: the residuals and the gap no longer fall (the normal equations' accuracy is
+    // exhausted near the optimum): five iterations without halving the worst of them.
+    const double worst = std::max({out.pres, out.dres, gap / std::max(1.0, std::abs(out.pobj))});
+    if (worst < 0.5 * best_worst) {
+      best_worst = worst;
+      stalled = 0;
+    } else if (++stalled >= 5) {
+      out.status = SparseSocpStatus::NumericalError;
+      out.message = "the cone program stalled (residuals and gap no longer fall)";
       break;
     }
     if (it >= settings.max_iterations) {
@@ -243,6 +262,9 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     cones.product(sa, za, so);
     Eigen::VectorXd dx, ds, dz;
     direction(-ll - so + cones.identity(sigma * mu), dx, ds, dz);
+    if (settings.verbose)
+      std::fprintf(stderr, "      sigma %.2e  regularization %.1e  normal residual %.2e\n", sigma, normal.delta(),
+                   normal.last_residual());
     if (!dx.allFinite() || !ds.allFinite() || !dz.allFinite()) {
       out.status = SparseSocpStatus::NumericalError;
       out.message = "the Newton direction is not finite";
