@@ -3,7 +3,12 @@
 
 #include <cmath>
 #include <Eigen/LU>
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "strictmin/io/input_error.h"
@@ -134,9 +139,9 @@ TEST(Conformal, DirectAndLinfQcAreNearlyConstantWithTheSameMaximum) {
               ds.bisection_steps);
 }
 
-// The L2 map of a large centre shift flips; qc linf and iso linf do not.
+// The L2 map of a large centre shift flips; qc and iso linf and direct do not.
 TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
-  const Problem p = test_support::figure2(8, 0.45);
+  const Problem p = test_support::figure2(6, 0.4);
   const Eigen::MatrixXd start = solve_l2(p).positions;
   ASSERT_GT(flipped(p, start), 0);
   for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
@@ -146,6 +151,13 @@ TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
     EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
     EXPECT_EQ(flipped(p, r.positions), 0);
     EXPECT_TRUE(std::isfinite(r.distortion.maxCoeff()));
+    DirectOptions d;
+    d.delta_k = 5e-2;
+    d.k_min = 1.0;
+    const Result strict = solve_conformal_direct(p, start, o, d);
+    EXPECT_EQ(strict.status, SolveStatus::Solved) << strict.message;
+    EXPECT_EQ(flipped(p, strict.positions), 0);
+    EXPECT_NEAR(strict.distortion.maxCoeff(), r.distortion.maxCoeff(), (1e-5 + 1e-3 * d.delta_k) * r.distortion.maxCoeff());
   }
 }
 
@@ -183,6 +195,33 @@ TEST(Conformal, TetProblemsAreBadInput) {
   fd.measure = Measure::FieldDeviation;
   const Problem q = test_support::figure2(4, 0.1);
   EXPECT_THROW(solve_conformal_linf(q, q.positions, fd), InputError);
+}
+
+// The command line: the summary keys of qc / iso (a contract, docs/measures.md), exit codes.
+TEST(Conformal, CommandLineSummaryKeys) {
+  const std::string dir = ::testing::TempDir();
+  const std::string summary = dir + "/qc_summary.json";
+  const std::string cmd = std::string(STRICTMIN_CLI) +
+                          " deform --example square --measure qc --method linf -q --gap 1e-6 --summary " + summary;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream in(summary);
+  const nlohmann::json s = nlohmann::json::parse(in);
+  EXPECT_EQ(s["status"], "solved");
+  EXPECT_EQ(s["flipped"], 0);
+  EXPECT_TRUE(s["lower_bound"].is_null());
+  for (const char* key : {"bisection_steps", "frame_iterations", "ipm_iterations", "frames_lower_bound"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_GT(s["bisection_steps"].get<int>(), 0);
+  EXPECT_GE(s["max_distortion"].get<double>(), 1.0);
+  // relax and tets: bad input, exit 1, nothing written.
+  const std::string out = dir + "/qc_relax.obj";
+  std::remove(out.c_str());
+  const std::string relax =
+      std::string(STRICTMIN_CLI) + " deform --example square --measure qc --method relax -q -o " + out + " 2>/dev/null";
+  EXPECT_EQ(WEXITSTATUS(std::system(relax.c_str())), 1);
+  EXPECT_FALSE(std::ifstream(out).good());
+  const std::string tets = std::string(STRICTMIN_CLI) + " deform --example tetbar --measure iso --method linf -q 2>/dev/null";
+  EXPECT_EQ(WEXITSTATUS(std::system(tets.c_str())), 1);
 }
 
 }  // namespace
