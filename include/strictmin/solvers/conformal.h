@@ -48,9 +48,9 @@ struct ConformalStats {
   int bisection_steps = 0;   // feasibility programs solved
   int frame_iterations = 0;
   int ipm_iterations = 0;
-  // The largest level certified infeasible under the final frames (measure units; NaN: none).
-  // It bounds the frame-relative measure (qc: |b|/<a, r> as K) of every map, for these frames
-  // only: not the measure itself, which is not convex.
+  // The largest level certified infeasible by the last bisection (measure units; NaN: none).
+  // It bounds the frame-relative measure (qc: |b|/<a, r> as K) of every map, for that
+  // bisection's frames only: not the measure itself, which is not convex.
   double frames_lower_bound = std::numeric_limits<double>::quiet_NaN();
   double bisection_time_s = 0, frame_time_s = 0;  // totals
 };
