@@ -165,10 +165,13 @@ TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
 // boundary fixed to a simple curve, such a map is a bijection onto the inside).
 TEST(Conformal, HandleOutsideTheFixedBoundaryIsInfeasible) {
   const Problem p = test_support::figure2(6, 1.0);  // centre (0.5, 0.5) -> (1.5, 0.5)
-  const Result r = solve_conformal_linf(p, solve_l2(p).positions, ConformalOptions{});
-  EXPECT_EQ(r.status, SolveStatus::Infeasible);
-  EXPECT_FALSE(r.message.empty());
-  std::printf("%s\n", r.message.c_str());
+  for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
+    ConformalOptions o;
+    o.measure = m;
+    const Result r = solve_conformal_linf(p, solve_l2(p).positions, o);
+    EXPECT_EQ(r.status, SolveStatus::Infeasible) << r.message;
+    EXPECT_NE(r.message.find("orientation-preserving"), std::string::npos) << r.message;
+  }
 }
 
 // Three handles on one triangle, reversed: that triangle is a flipped constant.

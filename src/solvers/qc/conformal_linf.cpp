@@ -43,6 +43,11 @@ Eigen::VectorXd start_frames(const qc::ConformalParts& parts, const Eigen::Vecto
   return r;
 }
 
+std::string no_orientation_preserving_map() {
+  return "no orientation-preserving map meets the constraints within the frames' convex cones (certified at K = "
+         "1e6, resp. S = 1e6); the handles may reverse the orientation of the mesh between them";
+}
+
 }  // namespace
 
 Eigen::VectorXd conformal_distortion(const Problem& p, Measure m, const Eigen::MatrixXd& X) {
@@ -86,10 +91,34 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
       return out;
     }
   double current = qc::free_max(setup, x);  // with frames from x: the measure itself
+  // 3. A start that is not orientation-preserving, for iso: first any orientation-preserving
+  //    map, by qc's well-scaled cones at K = 1e6 (iso's at S = 1e6 would mix 1e6 and 1e-6 in
+  //    one program); iso then starts from it, where its value is finite.
+  if (!std::isfinite(current) && options.measure == Measure::Isometric) {
+    qc::BisectionSetup phase1 = setup;
+    phase1.measure = Measure::Quasiconformal;
+    phase1.bounds = Eigen::VectorXd::Constant(parts.count(), -1.0);
+    const qc::FeasibilityTest t = qc::test_level(phase1, kCap, x);
+    ++st.bisection_steps;
+    st.ipm_iterations += t.ipm_iterations;
+    if (t.verdict != qc::Verdict::Feasible) {
+      out.status = t.verdict == qc::Verdict::Infeasible ? SolveStatus::Infeasible : SolveStatus::NumericalError;
+      out.message = t.verdict == qc::Verdict::Infeasible ? no_orientation_preserving_map()
+                                                          : "could not decide whether an orientation-preserving map "
+                                                            "exists: " + t.message;
+      out.positions = start;
+      out.distortion = fixed_values;
+      out.time_s = seconds_since(t0);
+      return out;
+    }
+    x = t.x;
+    setup.frames = qc::frames_of(parts, x);
+    current = qc::free_max(setup, x);
+  }
   bool converged = false;
   double last_improvement = 1.0;  // relative, of the last frame iteration
   std::string message;
-  // 3. Frame iterations: bisection for the frames of the current map, then new frames.
+  // 4. Frame iterations: bisection for the frames of the current map, then new frames.
   for (int f = 1; f <= options.max_frame_iterations; ++f) {
     const auto tf = std::chrono::steady_clock::now();
     // The bracket needs to be only a little narrower than the frames' last improvement: coarse
@@ -100,11 +129,10 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     st.ipm_iterations += b.ipm_iterations;
     st.bisection_time_s += seconds_since(tf);
     if (!b.feasible) {
-      out.status = SolveStatus::Infeasible;
-      message = "no orientation-preserving map meets the constraints within the frames' convex cones (first level "
-                "tested: " +
-                std::string(options.measure == Measure::Quasiconformal ? "K" : "S") +
-                " = 1e6); the handles may reverse the orientation of the mesh between them";
+      const bool certified = !std::isnan(b.certified_lower);
+      out.status = certified ? SolveStatus::Infeasible : SolveStatus::NumericalError;
+      message = certified ? no_orientation_preserving_map() : "could not decide whether an orientation-preserving map "
+                                                              "meets the constraints: " + b.message;
       break;
     }
     ++st.frame_iterations;
@@ -136,7 +164,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
       break;
     }
   }
-  // 4. The result: the measure per element, the status by the stopping criterion met.
+  // 5. The result: the measure per element, the status by the stopping criterion met.
   out.positions = problem.with_free_dofs(x);
   out.distortion = conformal_distortion(problem, options.measure, out.positions);
   out.iterations = st.frame_iterations;
