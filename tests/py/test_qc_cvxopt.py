@@ -10,9 +10,11 @@ frames from the L2 map and the program
                         |b_T| <= <a_T, r_T> - 1/S + tau       (iso)
                         tau >= -1
 
-as G v + s = h, s in a product of cones, and our optimum. CVXOPT's conelp solves the same
-program; the optimal tau must agree to 1e-6 (levels on both sides of the optimum: a
-negative tau means the level is feasible). Exit code 77 (skip) when cvxopt is missing.
+as G v + s = h, s in a product of cones, our optimum and the corrected dual bound (the
+certificate of an infeasible level, sparse_socp.h: corrected_dual_bound). CVXOPT's conelp
+solves the same program; the optimal tau must agree to 1e-6 (levels on both sides of the
+optimum: a negative tau means the level is feasible) and the bound must lie below CVXOPT's
+optimum (to 1e-9) and within 1e-6 of it. Exit code 77 (skip) when cvxopt is missing.
 """
 import json
 import os
@@ -63,8 +65,11 @@ for case in CASES:
     sol = solvers.conelp(c, G, h, cone_dims)
     theirs = sol["primal objective"]
     ours = p["pobj"]
+    # The corrected dual bound (the certificate of an infeasible level) is a true lower bound.
+    bound = p["corrected_bound"]
     ok = sol["status"] == "optimal" and abs(ours - theirs) <= 1e-6 * max(1.0, abs(theirs))
-    print("%-24s ours tau %.10f (%d iterations, %s)  cvxopt %.10f (%s)  %s" %
-          (" ".join(case), ours, p["iterations"], p["status"], theirs, sol["status"], "ok" if ok else "MISMATCH"))
+    ok = ok and (bound is None or bound <= theirs + 1e-9) and (bound is None or bound >= theirs - 1e-6)
+    print("%-24s ours tau %.10f (%d iterations, %s), certified >= %s  cvxopt %.10f (%s)  %s" %
+          (" ".join(case), ours, p["iterations"], p["status"], bound, theirs, sol["status"], "ok" if ok else "MISMATCH"))
     failures += 0 if ok else 1
 sys.exit(1 if failures else 0)

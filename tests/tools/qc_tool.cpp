@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   j["dobj"] = r.dobj;
   j["converged"] = r.status == qc::SparseSocpStatus::Converged;
   j["iterations"] = r.iterations;
+  j["corrected_bound"] = qc::corrected_dual_bound(prog, r.z, nullptr);
   j["status"] = r.status == qc::SparseSocpStatus::Converged ? "converged" : r.message;
   if (out.empty())
     std::cout << j.dump() << "\n";

@@ -57,7 +57,9 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
       out.value = value;
       return true;
     }
-    if (it.dobj > 0 && it.dres <= 1e-9) {
+    // A positive dual bound, certified after correcting the dual iterate to exact
+    // feasibility (its residual would otherwise leave the bound unproven).
+    if (it.dobj > 0 && it.dres <= 1e-4 && corrected_dual_bound(program, *it.z, s.cache) > 0) {
       out.verdict = Verdict::Infeasible;
       return true;
     }
@@ -67,7 +69,7 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
       solve_sparse_socp(program, slack_start(s.measure, *s.parts, x_start), s.ipm, monitor, s.cache);
   out.ipm_iterations = r.iterations;
   // 3. Otherwise the optimum slack's sign decides, when the solve converged away from 0.
-  if (r.status == SparseSocpStatus::Converged && out.verdict == Verdict::Undecided && r.dobj > 0)
+  if (out.verdict == Verdict::Undecided && r.dobj > 0 && corrected_dual_bound(program, r.z, s.cache) > 0)
     out.verdict = Verdict::Infeasible;
   if (out.verdict == Verdict::Undecided) out.message = r.message;
   return out;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/conformal.h"
@@ -70,6 +71,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   setup.parts = &parts;
   setup.bounds = active_bounds(parts, options.element_bounds);
   setup.ipm.max_iterations = options.max_ipm_iterations;
+  setup.ipm.verbose = std::getenv("STRICTMIN_QC_VERBOSE") != nullptr;  // one line per iteration
   setup.cache = &cache;
   setup.frames = start_frames(parts, x);
   ConformalStats local;

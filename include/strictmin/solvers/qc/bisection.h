@@ -17,8 +17,8 @@ enum class Verdict { Feasible, Infeasible, Undecided };
 // One feasibility question: is there a map with frame value <= level_T on every active
 // element (levels: `free_level` for free elements, bounds[i] >= 0 for bounded ones)?
 // Feasible: a witness map (x) was found, its largest free frame value in `value`.
-// Infeasible: the slack program's dual bound (a certificate, up to its dual residual) is
-// positive. Undecided: the optimum slack is 0 to the solver's accuracy.
+// Infeasible: a dual bound of the slack program, corrected to exact dual feasibility
+// (sparse_socp.h: corrected_dual_bound), is positive. Undecided: the optimum slack is 0 to the solver's accuracy.
 struct FeasibilityTest {
   Verdict verdict = Verdict::Undecided;
   Eigen::VectorXd x;

@@ -68,6 +68,13 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
                                     const SparseSocpMonitor& monitor = nullptr,
                                     SparseCholeskyCache* cache = nullptr);
 
+// A certified lower bound on the optimum from a dual iterate z that is only nearly feasible
+// (G^T z + c = r != 0): z is corrected to z + dz with dz = -G (G^T G)^{-1} r, so that
+// G^T (z + dz) + c = 0 exactly (to round-off); when z + dz lies in the cones, weak duality
+// gives c^T x >= -h^T (z + dz) for every feasible x. Returns -inf when the corrected z
+// leaves the cones. One factorisation of G^T G (analysis kept in the cache).
+double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache);
+
 // The symbolic analysis of the normal equations, kept across programs with the same G
 // pattern (the bisection's steps and frame updates change only values).
 class SparseCholeskyCache {
