@@ -185,7 +185,8 @@ Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& sta
   ConformalStats local;
   ConformalStats& st = stats ? *stats : local;
   DirectOptions d = direct;
-  d.start = start;
+  Problem from_start = problem;  // Algorithm 2 starts from the problem's positions
+  from_start.positions = start;
   // Each level: the bisection with the fixed elements' bounds as their own cone levels
   // (paper Section 7: "binary-search L-infinity optimization in the direct strict solver").
   d.level_solver = [&](const Problem& level, const LinfOptions& o, const Eigen::MatrixXd& X) {
@@ -201,8 +202,7 @@ Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& sta
     st.frame_time_s += s.frame_time_s;
     return r;
   };
-  Result r = solve_direct(problem, d);
-  return r;
+  return solve_direct(from_start, d);
 }
 
 }  // namespace strictmin
