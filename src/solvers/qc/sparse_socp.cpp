@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "strictmin/solvers/socp/soc.h"
 #include "strictmin/solvers/sparse_cholesky.h"
@@ -100,54 +101,68 @@ class Cones {
     for (int i = 0; i < count(); ++i) a = std::min(a, max_step(l.data() + off_[i], u.data() + off_[i], dims_[i]));
     return a;
   }
-  // W^{-2} as a block-diagonal sparse matrix (W^{-1} is symmetric: W^{-2} = W^{-1} W^{-1}).
-  Eigen::SparseMatrix<double> winv2(const Scaling& sc) const {
-    std::vector<Eigen::Triplet<double>> t;
-    double col[16], out[16], out2[16];
-    for (int i = 0; i < count(); ++i) {
-      const int o = off_[i], d = dims_[i];
-      for (int j = 0; j < d; ++j) {
-        std::fill(col, col + d, 0.0);
-        col[j] = 1.0;
-        apply_winv(sc.beta[i], sc.w.data() + o, d, col, out);
-        apply_winv(sc.beta[i], sc.w.data() + o, d, out, out2);
-        for (int r = 0; r < d; ++r) t.emplace_back(o + r, o + j, out2[r]);
-      }
-    }
-    Eigen::SparseMatrix<double> m(off_.back(), off_.back());
-    m.setFromTriplets(t.begin(), t.end());
-    return m;
-  }
-
  private:
   std::vector<int> dims_;
   std::vector<int> off_;
 };
 
 // The normal equations H dx = r with H = G^T W^{-2} G (+ regularisation), refined against
-// the unregularised H.
+// the unregularised H. H's pattern (lower triangle) and each cone's slots in it are found
+// once; every factorisation refills the values in place, cone by cone:
+//   H_i = G_i^T W_i^{-2} G_i = (1/beta_i^2) (2 p p^T - G_i^T J G_i),  p = G_i^T v_i
+// (soc.h: W^{-2} = (1/beta^2)(2 v v^T - J)), with G_i^T J G_i constant and kept.
 class Normal {
  public:
-  Normal(const SparseSocp& p, const SparseSocpSettings& st, SparseCholesky& chol) : p_(p), st_(st), chol_(chol) {}
-  bool factor(const Eigen::SparseMatrix<double>& w2) {
-    w2_ = &w2;
-    Eigen::SparseMatrix<double> h = p_.G.transpose() * (w2 * p_.G);
+  Normal(const SparseSocp& p, const Cones& cones, const SparseSocpSettings& st, SparseCholesky& chol)
+      : p_(p), cones_(cones), st_(st), chol_(chol) {
+    build();
+  }
+  bool factor(const Scaling& sc) {
+    sc_ = &sc;
+    // 1. Element contributions into the values (in place).
+    double* values = h_.valuePtr();
+    std::fill(values, values + h_.nonZeros(), 0.0);
+    double v[16], pv[64];
+    for (int i = 0; i < cones_.count(); ++i) {
+      const int d = cones_.dim(i), nc = cols_off_[i + 1] - cols_off_[i];
+      const double* g = local_g_.data() + g_off_[i];
+      socp::winv2_vector(sc.w.data() + cones_.offset(i), d, v);
+      const double ib2 = 1.0 / (sc.beta[i] * sc.beta[i]);
+      for (int a = 0; a < nc; ++a) {
+        double t = 0;
+        for (int r = 0; r < d; ++r) t += v[r] * g[r * nc + a];
+        pv[a] = t;
+      }
+      const int* slot = slots_.data() + slot_off_[i];
+      const double* gjg = gjg_.data() + slot_off_[i];
+      for (int a = 0, k = 0; a < nc; ++a)
+        for (int b = 0; b <= a; ++b, ++k) values[slot[k]] += ib2 * (2.0 * pv[a] * pv[b] - gjg[k]);
+    }
+    // 2. Regularised factorisation (raised on failure).
     double mx = 0;
-    for (int j = 0; j < h.cols(); ++j) mx = std::max(mx, h.coeff(j, j));
+    for (int j : diag_) mx = std::max(mx, values[j]);
     if (!(mx > 0) || !std::isfinite(mx)) return false;
+    saved_.resize(static_cast<Eigen::Index>(diag_.size()));
+    for (size_t j = 0; j < diag_.size(); ++j) saved_[j] = values[diag_[j]];
     for (double delta = st_.regularization; delta < 1e-2; delta *= 100) {
       delta_ = delta;
-      Eigen::SparseMatrix<double> reg = h;
-      for (int j = 0; j < h.cols(); ++j) reg.coeffRef(j, j) += delta * mx + 1e-300;
-      if (!chol_.analyzed()) chol_.analyze(reg);
-      if (chol_.factorize(reg)) return true;
+      for (size_t j = 0; j < diag_.size(); ++j) values[diag_[j]] = saved_[j] + delta * mx + 1e-300;
+      if (!chol_.analyzed()) chol_.analyze(h_);
+      if (chol_.factorize(h_)) return true;
     }
     return false;
   }
+  // W^{-2} u, cone by cone.
+  void winv2(const Eigen::VectorXd& u, Eigen::VectorXd& out) const {
+    Eigen::VectorXd t;
+    cones_.apply(*sc_, Cones::Op::WInv, u, t);
+    cones_.apply(*sc_, Cones::Op::WInv, t, out);
+  }
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
-    Eigen::VectorXd x = chol_.solve(r);
+    Eigen::VectorXd x = chol_.solve(r), w;
     for (int k = 0; k < st_.refinement_steps; ++k) {
-      const Eigen::VectorXd res = r - p_.G.transpose() * (*w2_ * (p_.G * x));
+      winv2(p_.G * x, w);
+      const Eigen::VectorXd res = r - p_.G.transpose() * w;
       last_residual_ = max_abs(res) / std::max(1e-300, max_abs(r));
       if (max_abs(res) <= 1e-15 * std::max(1.0, max_abs(r))) break;
       x += chol_.solve(res);
@@ -158,10 +173,72 @@ class Normal {
   double delta() const { return delta_; }
 
  private:
+  // Each cone's columns, its dense rows of G, the lower-triangle pattern of H and the slots.
+  void build() {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = p_.G;
+    const int n = static_cast<int>(p_.G.cols()), E = cones_.count();
+    cols_off_.assign(E + 1, 0);
+    g_off_.assign(E + 1, 0);
+    std::vector<Eigen::Triplet<double>> pattern;
+    for (int i = 0; i < E; ++i) {
+      const int o = cones_.offset(i), d = cones_.dim(i);
+      std::vector<int> cols;
+      for (int r = o; r < o + d; ++r)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it)
+          cols.push_back(static_cast<int>(it.col()));
+      std::sort(cols.begin(), cols.end());
+      cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+      const int nc = static_cast<int>(cols.size());
+      if (d > 16 || nc > 64)  // the fixed buffers of factor()
+        throw std::invalid_argument("sparse SOCP: cones of at most 16 rows over at most 64 variables");
+      cols_.insert(cols_.end(), cols.begin(), cols.end());
+      cols_off_[i + 1] = cols_off_[i] + nc;
+      std::vector<double> g(static_cast<size_t>(d) * nc, 0.0);
+      for (int r = o; r < o + d; ++r)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it) {
+          const int a = static_cast<int>(std::lower_bound(cols.begin(), cols.end(), it.col()) - cols.begin());
+          g[static_cast<size_t>(r - o) * nc + a] += it.value();
+        }
+      local_g_.insert(local_g_.end(), g.begin(), g.end());
+      g_off_[i + 1] = g_off_[i] + d * nc;
+      for (int a = 0; a < nc; ++a)
+        for (int b = 0; b <= a; ++b) {
+          pattern.emplace_back(cols[a], cols[b], 0.0);
+          double t = 0;  // (G^T J G)_ab
+          for (int r = 0; r < d; ++r) t += (r == 0 ? 1.0 : -1.0) * g[r * nc + a] * g[r * nc + b];
+          gjg_.push_back(t);
+        }
+    }
+    for (int j = 0; j < n; ++j) pattern.emplace_back(j, j, 0.0);  // every diagonal entry
+    h_.resize(n, n);
+    h_.setFromTriplets(pattern.begin(), pattern.end());
+    h_.makeCompressed();
+    auto index = [&](int r, int c) {
+      const int* first = h_.innerIndexPtr() + h_.outerIndexPtr()[c];
+      const int* last = h_.innerIndexPtr() + h_.outerIndexPtr()[c + 1];
+      return static_cast<int>(std::lower_bound(first, last, r) - h_.innerIndexPtr());
+    };
+    slot_off_.assign(E + 1, 0);
+    for (int i = 0; i < E; ++i) {
+      const int* cols = cols_.data() + cols_off_[i];
+      const int nc = cols_off_[i + 1] - cols_off_[i];
+      for (int a = 0; a < nc; ++a)
+        for (int b = 0; b <= a; ++b) slots_.push_back(index(cols[a], cols[b]));
+      slot_off_[i + 1] = static_cast<int>(slots_.size());
+    }
+    diag_.resize(n);
+    for (int j = 0; j < n; ++j) diag_[j] = index(j, j);
+  }
+
   const SparseSocp& p_;
+  const Cones& cones_;
   const SparseSocpSettings& st_;
   SparseCholesky& chol_;
-  const Eigen::SparseMatrix<double>* w2_ = nullptr;
+  const Scaling* sc_ = nullptr;
+  Eigen::SparseMatrix<double> h_;  // lower triangle of H
+  std::vector<int> cols_, cols_off_, g_off_, slots_, slot_off_, diag_;
+  std::vector<double> local_g_, gjg_;
+  Eigen::VectorXd saved_;
   mutable double last_residual_ = 0;
   double delta_ = 0;
 };
@@ -177,7 +254,7 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     own = std::make_unique<SparseCholeskyCache>();
     cache = own.get();
   }
-  Normal normal(p, settings, cache->impl().cholesky);
+  Normal normal(p, cones, settings, cache->impl().cholesky);
   SparseSocpOutcome out;
   Eigen::VectorXd x = x0, s = p.h - p.G * x0;
   const double scale_h = std::max(1.0, max_abs(p.h)), scale_c = std::max(1.0, max_abs(p.c));
@@ -232,8 +309,7 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
       out.message = "an iterate left the cones' interior";
       break;
     }
-    const Eigen::SparseMatrix<double> w2 = cones.winv2(sc);
-    if (!normal.factor(w2)) {
+    if (!normal.factor(sc)) {
       out.status = SparseSocpStatus::NumericalError;
       out.message = "the normal equations could not be factorised";
       break;
@@ -244,12 +320,14 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
     //   ds = -rz - G dx (the primal equation, exactly: W (q - W dz) is the same in exact
     //   arithmetic, but W^2 dz cancels badly near the optimum and the primal residual grows).
     auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& ds, Eigen::VectorXd& dz) {
-      Eigen::VectorXd q, wiq;
+      Eigen::VectorXd q, wiq, t;
       cones.arrow(sc.lambda, rc, q);
       cones.apply(sc, Cones::Op::WInv, q, wiq);
-      dx = normal.solve(-rx - p.G.transpose() * (wiq + w2 * rz));
+      normal.winv2(rz, t);
+      dx = normal.solve(-rx - p.G.transpose() * (wiq + t));
       ds = -rz - p.G * dx;
-      dz = wiq - w2 * ds;
+      normal.winv2(ds, t);
+      dz = wiq - t;
       // dz = W^{-1} q - W^{-2} ds  (from W^{-1} ds + W dz = q)
     };
     // 4. Predictor (affine) direction and Mehrotra's centring parameter.
