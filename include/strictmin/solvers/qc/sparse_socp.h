@@ -8,8 +8,9 @@
 // deviation's cones (a k + b, J - R), heads depending on k only, applied matrix-free with
 // I_n (x) L normal blocks), a row of G may mix any variables: the quasiconformal cone
 // |b_T(x)| <= k <a_T(x), r_T> + tau has a head linear in the map itself. Its normal
-// equations G^T W^{-2} G are assembled as sparse products (their pattern never changes, so
-// CHOLMOD's symbolic analysis is done once per program) and solved by SparseCholesky.
+// equations G^T W^{-2} G have a fixed pattern, found once with each cone's slots in it and
+// refilled in place every iteration (CHOLMOD's symbolic analysis once per pattern, kept in a
+// SparseCholeskyCache across programs), and are solved by SparseCholesky.
 //
 // Method: primal-dual path following from an infeasible start, Nesterov-Todd scaling and
 // Mehrotra's predictor-corrector (the algebra of socp/soc.h, the structure of CVXOPT's
