@@ -152,7 +152,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     const double improvement = std::isfinite(current) ? current - next : kInf;
     x = x_new;
     current = next;
-    if (!b.converged && message.empty()) message = "bisection stopped at its step limit: " + b.message;
+    message = b.converged ? "" : "bisection stopped at its step limit: " + b.message;  // of the last one
     IterationRecord rec;
     rec.iteration = f;
     rec.max_distortion = current;
