@@ -124,8 +124,11 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   for (int f = 1; f <= options.max_frame_iterations; ++f) {
     const auto tf = std::chrono::steady_clock::now();
     // The bracket needs to be only a little narrower than the frames' last improvement: coarse
-    // while they move the maximum a lot, the final tolerance once they settle.
-    const double tolerance = std::max(options.bisection_tolerance, std::min(1e-3, 0.1 * last_improvement));
+    // while they move the maximum a lot, the final tolerance once they settle (an improvement
+    // below frame_tolerance: this iteration decides convergence).
+    const double tolerance = last_improvement <= options.frame_tolerance
+                                 ? options.bisection_tolerance
+                                 : std::max(options.bisection_tolerance, std::min(1e-3, 0.1 * last_improvement));
     qc::BisectionOutcome b = qc::bisect(setup, x, 1.0, kCap, tolerance, options.max_bisection_steps);
     st.bisection_steps += b.steps;
     st.ipm_iterations += b.ipm_iterations;
