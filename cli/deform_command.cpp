@@ -9,6 +9,7 @@
 #include "strictmin/io/handles_io.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
+#include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/deform.h"
 #include "strictmin/tasks/examples.h"
 
@@ -97,7 +98,9 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "'vertex x y [z]' (0-based vertex indices)")
       ->type_name("FILE");
   cmd->add_option("--measure", args->measure,
-                  "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method)")
+                  "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method), qc "
+                  "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)): planar meshes, methods l2 (the L2 fd start map), "
+                  "linf, direct; bisection over convex cones, never a flipped triangle")
       ->capture_default_str();
   cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap (>= 1)")

@@ -46,7 +46,8 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
   run.method = "given";
   run.label = "given map";
   run.mapped = report_mesh(rest, mapped, parametrization);
-  run.distortion = d.distortion;
+  run.distortion = report_values(parse_measure(summary.value("measure", std::string("fd"))).value_or(Measure::Arap),
+                                 d.distortion);
   run.weights = d.weights;
   run.flipped = d.stats.flipped;
   run.view_name = "view";

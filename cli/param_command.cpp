@@ -11,6 +11,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/report/html_report.h"
+#include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/param.h"
 
 namespace strictmin::cli {
@@ -52,7 +53,7 @@ int run_param(ParamArgs a) {
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);
-  if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use arap, asap or fd)");
+  if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use arap, asap, fd, qc or iso)");
   options.measure = *measure;
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {
@@ -103,7 +104,9 @@ void add_param_command(CLI::App& app, int& exit_code) {
   cmd->add_option("mesh", args->mesh, "Input surface (.obj/.off/.ply triangles, one boundary loop)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, the map as vt, f v/vt");
   cmd->add_option("--measure", args->measure,
-                  "arap or asap (local-global iterations around the method), fd (frames from the starting map)")
+                  "arap or asap (local-global iterations around the method), fd (frames from the starting map), qc "
+                  "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)) with methods l2 (the Tutte/LSCM start), linf, "
+                  "direct: bisection over convex cones, never a flipped triangle")
       ->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
       ->capture_default_str()

@@ -169,12 +169,14 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   const std::string distortion_path = resolve(text("distortion_file"), file);
   if (!distortion_path.empty()) {
     r.run.distortion = read_distortion_file(distortion_path, elements);
+    if (const auto m = parse_measure(measure_text)) r.run.distortion = report_values(*m, r.run.distortion);
   } else if (r.rest) {
     const auto measure = parse_measure(measure_text);
     if (!measure) throw InputError(file + ": unknown measure '" + measure_text + "'");
     Mesh mapped = r.run.mapped;
     if (!mapped.has_uv()) mapped = to_planar(mapped);
-    r.run.distortion = map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion;
+    r.run.distortion =
+        report_values(*measure, map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion);
     progress(out, "warning: " + file + ": no distortion_file (run with --distortion FILE); recomputed from " +
                       mapped_path);
   } else {

@@ -26,11 +26,16 @@ namespace {
 constexpr double kNoBound = std::numeric_limits<double>::quiet_NaN();
 }
 
+Eigen::VectorXd report_values(Measure measure, const Eigen::VectorXd& distortion) {
+  if (measure != Measure::Quasiconformal && measure != Measure::Isometric) return distortion;
+  return distortion.array() - 1.0;  // qc, iso >= 1: the pictures' scale starts at 1 (blue = undistorted)
+}
+
 MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure measure) {
   MethodRun r;
   r.method = method;
   r.mapped = d.deformed;
-  r.distortion = d.measured.distortion;
+  r.distortion = report_values(measure, d.measured.distortion);
   r.weights = d.measured.weights;
   r.flipped = d.measured.stats.flipped;
   r.lower_bound = measure == Measure::FieldDeviation ? d.result.lower_bound : kNoBound;
@@ -44,7 +49,7 @@ MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure m
   MethodRun r;
   r.method = method;
   r.mapped = p.mapped;
-  r.distortion = p.measured.distortion;
+  r.distortion = report_values(measure, p.measured.distortion);
   r.weights = p.measured.weights;
   r.flipped = p.flips;
   r.lower_bound = measure == Measure::FieldDeviation ? p.result.lower_bound : kNoBound;
@@ -121,8 +126,9 @@ std::string measure_description(const std::string& m) {
   if (m == "fd") return "field deviation \u2016J \u2212 I\u2016";
   if (m == "arap") return "ARAP distortion";
   if (m == "asap") return "ASAP distortion";
-  if (m == "qc") return "quasiconformal distortion \u03c3\u2081/\u03c3\u2082";
-  if (m == "iso") return "isometric distortion max(\u03c3\u2081, 1/\u03c3\u2082)";
+  // qc and iso are >= 1 (1: conformal / isometric): reports show their excess over 1.
+  if (m == "qc") return "quasiconformal distortion \u03c3\u2081/\u03c3\u2082 \u2212 1";
+  if (m == "iso") return "isometric distortion max(\u03c3\u2081, 1/\u03c3\u2082) \u2212 1";
   return m;
 }
 

@@ -29,6 +29,10 @@ MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure 
 MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure measure);
 MethodRun method_run(const std::string& method, const InterpFrame& f);
 
+// The values a report shows for a measure: qc and iso (>= 1, 1 undistorted) as their excess
+// over 1, so that the colour scale starts at 1 (blue) like the others' at 0; the rest as is.
+Eigen::VectorXd report_values(Measure measure, const Eigen::VectorXd& distortion);
+
 // A task's --report DIR: DIR/summary.json (the summary), then each section's pictures and
 // histogram (report/comparison.h; a section with id "" writes into DIR itself) and
 // DIR/index.html titled "strictmin: TITLE". Returns the path of index.html.

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "strictmin/solvers/strict.h"
+#include "strictmin/tasks/conformal_method.h"
 
 namespace strictmin {
 
@@ -53,6 +54,16 @@ void add_local_global_summary(nlohmann::json& s, const Result& r) {
   s["history"] = history;
 }
 
+void add_conformal_summary(nlohmann::json& s, const SolverOptions& o, const ConformalStats& stats) {
+  if (o.method == Method::L2) s["start_only"] = true;  // l2 with qc / iso: the starting map
+  s["bisection_steps"] = stats.bisection_steps;
+  s["frame_iterations"] = stats.frame_iterations;
+  s["ipm_iterations"] = stats.ipm_iterations;
+  s["lower_bound"] = nullptr;
+  s["frames_lower_bound"] = number_or_null(stats.frames_lower_bound);
+  s["bisection_time_s"] = stats.bisection_time_s;
+}
+
 nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOptions& options,
                               const DeformOutcome& d, const SummaryFiles& files) {
   nlohmann::json s;
@@ -70,6 +81,7 @@ nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOpti
   add_status_summary(s, d.result);
   add_solver_summary(s, options.solver, d.result);
   if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
+  if (is_conformal_measure(options.measure)) add_conformal_summary(s, options.solver, d.conformal);
   s["solver_time_s"] = d.result.time_s;
   return s;
 }
@@ -93,7 +105,10 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
   add_status_summary(s, p.result);
   if (!options.init_only) {
     add_solver_summary(s, options.solver, p.result);
-    if (options.measure != Measure::FieldDeviation) add_local_global_summary(s, p.result);
+    if (is_conformal_measure(options.measure))
+      add_conformal_summary(s, options.solver, p.conformal);
+    else if (options.measure != Measure::FieldDeviation)
+      add_local_global_summary(s, p.result);
   }
   s["init_time_s"] = p.init_time_s;
   s["solver_time_s"] = p.result.time_s;

@@ -12,6 +12,7 @@
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/method.h"
 #include "strictmin/tasks/param.h"
+#include "strictmin/solvers/conformal.h"
 
 namespace strictmin {
 
@@ -31,6 +32,12 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& options, const R
 // arap / asap: local_global_iterations, fd_step_lower_bound (lower_bound becomes null) and
 // history (the maximum per iteration).
 void add_local_global_summary(nlohmann::json& s, const Result& r);
+
+// qc / iso (deform, param): bisection_steps, frame_iterations, ipm_iterations,
+// frames_lower_bound (the frame-relative bound of the last frames: not a bound on the
+// measure), lower_bound = null (none is certified for the non-convex measure), and
+// start_only for l2 (the starting map).
+void add_conformal_summary(nlohmann::json& s, const SolverOptions& o, const ConformalStats& stats);
 
 // What names the run's files in a summary: "" when there is none.
 struct SummaryFiles {

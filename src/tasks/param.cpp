@@ -8,6 +8,7 @@
 #include "strictmin/param/tutte.h"
 #include "strictmin/param/uv_checks.h"
 #include "strictmin/report/stats.h"
+#include "strictmin/tasks/conformal_method.h"
 
 namespace strictmin {
 namespace {
@@ -35,8 +36,9 @@ std::string init_name(ParamInit i) { return i == ParamInit::Tutte ? "tutte" : "l
 
 ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const std::string& source) {
   const Measure m = options.measure;
-  if (m != Measure::Arap && m != Measure::Asap && m != Measure::FieldDeviation)
-    throw InputError("param minimizes arap, asap or fd; '" + measure_name(m) + "' is not available");
+  const bool conformal = is_conformal_measure(m);
+  if (m != Measure::Arap && m != Measure::Asap && m != Measure::FieldDeviation && !conformal)
+    throw InputError("param minimizes arap, asap, fd, qc or iso; '" + measure_name(m) + "' is not available");
   ParamOutcome out;
   out.boundary = disk_boundary(mesh, source);
   out.problem = make_problem(mesh);
@@ -47,13 +49,22 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
 
   Problem& p = out.problem;
   p.positions = out.initial;
-  p.fix({Handle{out.boundary.front(), out.initial.row(out.boundary.front()).transpose()}});
+  std::vector<Handle> pins{Handle{out.boundary.front(), out.initial.row(out.boundary.front()).transpose()}};
+  // qc is invariant under similarities: a second pin (the boundary vertex halfway round)
+  // fixes rotation and scale as well, so that the bisection's slack cannot grow by scaling.
+  if (m == Measure::Quasiconformal && out.boundary.size() > 2) {
+    const int v = out.boundary[out.boundary.size() / 2];
+    pins.push_back(Handle{v, out.initial.row(v).transpose()});
+  }
+  p.fix(pins);
   LocalGlobalOptions lg = options.local_global;
   lg.local = m == Measure::Asap ? LocalStep::Similarity : LocalStep::Rotation;
   if (options.init_only) {
     out.result.positions = out.initial;
     out.result.time_s = out.init_time_s;
     if (m == Measure::FieldDeviation) local_step(p, out.initial, lg);
+  } else if (conformal) {
+    out.result = run_conformal_method(p, out.initial, m, options.solver, &out.conformal);
   } else if (m == Measure::FieldDeviation) {
     local_step(p, out.initial, lg);  // the frames: rotations of the initial map
     out.result = run_method(p, options.solver);

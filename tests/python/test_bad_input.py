@@ -133,8 +133,8 @@ def test_tasks(square):
     surface = np.column_stack([V, V[:, 0] * V[:, 1]])
     with pytest.raises(ValueError, match="3D surface"):
         strictmin.deform(surface, F, idx, np.column_stack([pos]))
-    with pytest.raises(ValueError, match="param minimizes arap, asap or fd"):
-        strictmin.param(surface, F, measure="qc")
+    with pytest.raises(ValueError, match="'relax' is not available"):
+        strictmin.param(surface, F, measure="qc", method="relax")
     with pytest.raises(ValueError, match="outside \\[0, 1\\]"):
         strictmin.interp(V, F, V * 2, 1.5)
     with pytest.raises(ValueError, match="target has"):

@@ -1,6 +1,7 @@
 #pragma once
 // Deformation with positional constraints (planar triangle meshes and tet meshes): the
-// handles are fixed, every element's target is the identity (field deviation ||J - I||).
+// handles are fixed, every element's target is the identity (field deviation ||J - I||);
+// planar meshes also take the Section 7 measures qc and iso (solvers/conformal.h).
 #include <functional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "strictmin/mesh/handle.h"
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/local_global.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/map_distortion.h"
@@ -31,6 +33,7 @@ struct DeformOutcome {
   Result result;          // positions, the solver's field deviation, status, iterations
   Mesh deformed;          // the input mesh with the new positions
   MapDistortion measured; // distortion of the result in options.measure, stats, flips
+  ConformalStats conformal;  // qc / iso: bisection steps, frame iterations
 };
 
 // Throws InputError for input the task can't take: a surface (non-planar triangle) mesh,

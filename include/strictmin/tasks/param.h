@@ -11,6 +11,7 @@
 #include "strictmin/measures/measures.h"
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/local_global.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/map_distortion.h"
@@ -23,7 +24,7 @@ enum class ParamInit { Tutte, Lscm };
 std::string init_name(ParamInit i);  // "tutte", "lscm"
 
 struct ParamOptions {
-  Measure measure = Measure::Arap;  // arap, asap or fd
+  Measure measure = Measure::Arap;  // arap, asap, fd, or qc / iso (solvers/conformal.h, from the initial map)
   ParamInit init = ParamInit::Tutte;
   bool init_only = false;           // the initial map is the result (--method tutte|lscm)
   SolverOptions solver;
@@ -40,6 +41,7 @@ struct ParamOutcome {
   MapDistortion measured;      // in options.measure (fd: against the frames)
   int flips = 0;               // triangles against the majority orientation
   bool boundary_overlap = false;
+  ConformalStats conformal;    // qc / iso: bisection steps, frame iterations
 };
 
 // Throws InputError when the mesh is not a disk (param/topology.h) or the measure is not

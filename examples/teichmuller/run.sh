@@ -1,0 +1,23 @@
+#!/bin/sh
+# Teichmueller-like maps (paper Figure 15, docs/measures.md): the square with its boundary
+# fixed and two landmarks turned; qc L-infinity, qc strict (direct), ASAP strict (relax;
+# ASAP direct stopped 'infeasible' at its third level on this set-up, 2026-11-25),
+# and a side-by-side report of their quasiconformal distortion.
+#   examples/teichmuller/run.sh [STRICTMIN] [OUT] [N]
+set -e
+S=${1:-strictmin}
+OUT=${2:-teichmuller_out}
+N=${3:-24}
+HERE=$(dirname "$0")
+python3 "$HERE/make_square.py" "$N" "$OUT"
+cd "$OUT"
+$S deform square.obj --handles handles.txt --measure qc --method linf -o qc_linf.obj \
+    --summary qc_linf.json --distortion qc_linf.txt -q || true
+$S deform square.obj --handles handles.txt --measure qc --method direct --delta-k 1e-3 -o qc_direct.obj \
+    --summary qc_direct.json --distortion qc_direct.txt -q || true
+$S deform square.obj --handles handles.txt --measure asap --method relax -o asap_relax.obj \
+    --summary asap_relax.json -q || true
+# The ASAP map's quasiconformal distortion, for the same histogram.
+$S eval square.obj asap_relax.obj --measure qc --summary asap_relax_qc.json --distortion asap_relax_qc.txt -q
+$S report report --scale 1 --run qc_linf.json --run qc_direct.json --run asap_relax_qc.json -q
+echo "open $OUT/report/index.html"

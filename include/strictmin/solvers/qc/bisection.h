@@ -1,0 +1,60 @@
+#pragma once
+// Bisection on the level of a Section 7 measure for fixed frames (paper Section 7: "a
+// binary-search (bisection) L-infinity optimization"). For fixed frames the largest
+// frame-relative value max_T (qc: |b_T| / <a_T, r_T>) is quasi-convex in the map, so the
+// feasible levels form an interval [L*, inf) and bisection on the level is exact.
+#include <Eigen/Core>
+#include <string>
+
+#include "strictmin/measures/measures.h"
+#include "strictmin/solvers/qc/qc_program.h"
+#include "strictmin/solvers/qc/sparse_socp.h"
+
+namespace strictmin::qc {
+
+enum class Verdict { Feasible, Infeasible, Undecided };
+
+// One feasibility question: is there a map with frame value <= level_T on every active
+// element (levels: `free_level` for free elements, bounds[i] >= 0 for bounded ones)?
+// Feasible: a witness map (x) was found, its largest free frame value in `value`.
+// Infeasible: a dual bound of the slack program, corrected to exact dual feasibility
+// (sparse_socp.h: corrected_dual_bound), is positive. Undecided: the optimum slack is 0 to the solver's accuracy.
+struct FeasibilityTest {
+  Verdict verdict = Verdict::Undecided;
+  Eigen::VectorXd x;
+  double value = 0;
+  int ipm_iterations = 0;
+  std::string message;
+};
+
+struct BisectionSetup {
+  Measure measure = Measure::Quasiconformal;
+  const ConformalParts* parts = nullptr;
+  Eigen::VectorXd frames;      // 2 per active element
+  Eigen::VectorXd bounds;      // per active element, < 0: free
+  SparseSocpSettings ipm;
+  SparseCholeskyCache* cache = nullptr;
+};
+
+FeasibilityTest test_level(const BisectionSetup& setup, double free_level, const Eigen::VectorXd& x_start);
+
+struct BisectionOutcome {
+  Eigen::VectorXd x;           // the lowest feasible map found
+  double value = 0;            // its largest free frame value (+inf: none found)
+  double lower = 0;            // bracket's lower end (certified or undecided)
+  double certified_lower = std::numeric_limits<double>::quiet_NaN();  // largest level certified infeasible
+  int steps = 0, ipm_iterations = 0;
+  bool converged = false;      // bracket below tolerance (not stopped by the step cap)
+  bool feasible = false;       // some feasible map (the start counts when its value is finite)
+  std::string message;
+};
+
+// From the map x0 (its free frame value is the first upper end; +inf: the first test is at
+// level `cap`), down to a bracket of width tolerance * max(1, upper).
+BisectionOutcome bisect(const BisectionSetup& setup, const Eigen::VectorXd& x0, double floor, double cap,
+                        double tolerance, int max_steps);
+
+// The largest frame value over the free active elements of x.
+double free_max(const BisectionSetup& setup, const Eigen::VectorXd& x);
+
+}  // namespace strictmin::qc

@@ -1,0 +1,66 @@
+#pragma once
+// The paper's Section 7 measures as convex cones for fixed per-triangle frames (NOTES.md,
+// "Section 7 measures as convex constraints"; Lipman 2012, Aigerman & Lipman 2013).
+//
+// In 2D, J = A + B with A conformal and B anticonformal, represented by the 2-vectors
+//   a = ((J00 + J11)/2, (J10 - J01)/2),   b = ((J00 - J11)/2, (J10 + J01)/2),
+// sigma1 = |a| + |b|, sigma2 = |a| - |b|. With a unit frame r_T per triangle, |a| is replaced
+// by the linear <a, r_T> <= |a|, which makes each constraint a second-order cone:
+//   qc  (k = (K-1)/(K+1)):  |b| <= k_T <a, r_T>
+//   iso (S):                |a| <= u_T,  |b| <= S_T - u_T   (|a| + |b| <= S_T, u_T auxiliary)
+//                           |b| <= <a, r_T> - 1/S_T          (sigma2 >= 1/S_T)
+// Every such map has <a, r_T> >= |b|, so |a| >= |b| and det J = |a|^2 - |b|^2 >= 0: feasible
+// maps are orientation-preserving (strictly, when the cone holds strictly).
+//
+// The feasibility question "do some positions meet every cone at these levels?" is posed with
+// a slack (every cone's head + tau, minimize tau, tau >= -cap): feasible iff the optimum is
+// negative, never relying on an infeasibility certificate at the boundary.
+#include <Eigen/Core>
+#include <vector>
+
+#include "strictmin/measures/measures.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/qc/sparse_socp.h"
+
+namespace strictmin::qc {
+
+// The per-triangle affine maps x -> a_T, b_T over the free dofs (x laid out as
+// Problem::free_index), for the elements with a free vertex.
+struct ConformalParts {
+  std::vector<int> element;                   // active element -> problem element
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A, B;  // 2 rows per active element
+  Eigen::VectorXd a0, b0;                     // offsets (the fixed vertices' share)
+  int num_x = 0;
+  int count() const { return static_cast<int>(element.size()); }
+};
+
+// Throws InputError for anything but 2D maps of triangles (image_dim = domain_dim = 2) or for
+// linear equalities (seams), which these measures do not support.
+ConformalParts conformal_parts(const Problem& problem);
+
+// a and b of every active element at x (2 per element, stacked).
+void evaluate_ab(const ConformalParts& parts, const Eigen::VectorXd& x, Eigen::VectorXd& a, Eigen::VectorXd& b);
+
+// Frames r_T = a_T / |a_T| of the map x ((1, 0) where a_T = 0).
+Eigen::VectorXd frames_of(const ConformalParts& parts, const Eigen::VectorXd& x);
+
+// The frame-relative value of the measure on each active element (the quantity the cones
+// bound): qc: |b| / <a, r> as K = (1 + t)/(1 - t) with t = |b| / <a, r> (+inf when
+// <a, r> <= |b|); iso: max(|a| + |b|, 1 / (<a, r> - |b|)) (+inf when <a, r> <= |b|).
+// Never below the true measure (<a, r> <= |a|).
+Eigen::VectorXd frame_values(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                             const Eigen::VectorXd& x);
+
+// qc: K <-> k = (K - 1)/(K + 1) (K = +inf <-> k = 1).
+double k_of_K(double K);
+double K_of_k(double k);
+
+// The slack program for levels `level` (one per active element, in measure units: K for qc,
+// S for iso). Variables: x (num_x), then iso's u_T (one per active element), then tau.
+SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                         const Eigen::VectorXd& level, double tau_cap);
+int slack_index(Measure m, const ConformalParts& parts);  // index of tau among the variables
+// A starting vector for the slack program from the map x (iso: u_T = |a_T|, tau = 0).
+Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x);
+
+}  // namespace strictmin::qc

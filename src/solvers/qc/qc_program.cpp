@@ -1,0 +1,171 @@
+#include "strictmin/solvers/qc/qc_program.h"
+
+#include <cmath>
+#include <limits>
+
+#include "strictmin/io/input_error.h"
+
+namespace strictmin::qc {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Appends c * (row r of M) to the triplets of row `out_row`, with the columns shifted.
+void add_row(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int r, double c, int out_row,
+             std::vector<Eigen::Triplet<double>>& t) {
+  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(M, r); it; ++it)
+    t.emplace_back(out_row, static_cast<int>(it.col()), c * it.value());
+}
+
+}  // namespace
+
+ConformalParts conformal_parts(const Problem& p) {
+  // 1. Only 2D triangle maps: a and b are the 2D conformal / anticonformal parts.
+  if (p.image_dim != 2 || p.domain_dim != 2)
+    throw InputError("the qc and iso measures are defined for 2D maps of triangles (planar deformation, disk "
+                     "parametrization); this problem maps " +
+                     std::to_string(p.domain_dim) + "D elements to " + std::to_string(p.image_dim) + "D");
+  if (p.has_equalities())
+    throw InputError("the qc and iso measures do not support linear equality constraints (seams)");
+  // 2. vec(J_T) = G x + j0 (problem.h: h = vec(R) - G_fixed q_fixed).
+  const Problem::Reduced red = p.reduced();
+  Eigen::VectorXd j0(red.h.size());
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c) j0[4 * e + 2 * r + c] = p.targets(2 * e + r, c) - red.h[4 * e + 2 * r + c];
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> G = red.G;
+  // 3. Active elements: those with a free vertex (the others are constants of the problem).
+  ConformalParts out;
+  out.num_x = static_cast<int>(G.cols());
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (G.row(4 * e).nonZeros() + G.row(4 * e + 1).nonZeros() + G.row(4 * e + 2).nonZeros() +
+            G.row(4 * e + 3).nonZeros() > 0)
+      out.element.push_back(e);
+  // 4. a = ((J00 + J11)/2, (J10 - J01)/2), b = ((J00 - J11)/2, (J10 + J01)/2).
+  const int E = out.count();
+  std::vector<Eigen::Triplet<double>> ta, tb;
+  out.a0.resize(2 * E);
+  out.b0.resize(2 * E);
+  for (int i = 0; i < E; ++i) {
+    const int e = out.element[i], r = 4 * e;
+    add_row(G, r + 0, 0.5, 2 * i, ta), add_row(G, r + 3, 0.5, 2 * i, ta);
+    add_row(G, r + 2, 0.5, 2 * i + 1, ta), add_row(G, r + 1, -0.5, 2 * i + 1, ta);
+    add_row(G, r + 0, 0.5, 2 * i, tb), add_row(G, r + 3, -0.5, 2 * i, tb);
+    add_row(G, r + 2, 0.5, 2 * i + 1, tb), add_row(G, r + 1, 0.5, 2 * i + 1, tb);
+    out.a0[2 * i] = 0.5 * (j0[r] + j0[r + 3]);
+    out.a0[2 * i + 1] = 0.5 * (j0[r + 2] - j0[r + 1]);
+    out.b0[2 * i] = 0.5 * (j0[r] - j0[r + 3]);
+    out.b0[2 * i + 1] = 0.5 * (j0[r + 2] + j0[r + 1]);
+  }
+  out.A.resize(2 * E, out.num_x);
+  out.B.resize(2 * E, out.num_x);
+  out.A.setFromTriplets(ta.begin(), ta.end());
+  out.B.setFromTriplets(tb.begin(), tb.end());
+  return out;
+}
+
+void evaluate_ab(const ConformalParts& parts, const Eigen::VectorXd& x, Eigen::VectorXd& a, Eigen::VectorXd& b) {
+  a = parts.A * x + parts.a0;
+  b = parts.B * x + parts.b0;
+}
+
+Eigen::VectorXd frames_of(const ConformalParts& parts, const Eigen::VectorXd& x) {
+  Eigen::VectorXd a, b;
+  evaluate_ab(parts, x, a, b);
+  Eigen::VectorXd r(a.size());
+  for (int i = 0; i < parts.count(); ++i) {
+    const double n = std::hypot(a[2 * i], a[2 * i + 1]);
+    r[2 * i] = n > 0 ? a[2 * i] / n : 1.0;
+    r[2 * i + 1] = n > 0 ? a[2 * i + 1] / n : 0.0;
+  }
+  return r;
+}
+
+double k_of_K(double K) { return std::isfinite(K) ? (K - 1) / (K + 1) : 1.0; }
+double K_of_k(double k) { return k < 1 ? (1 + k) / (1 - k) : kInf; }
+
+Eigen::VectorXd frame_values(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                             const Eigen::VectorXd& x) {
+  Eigen::VectorXd a, b, out(parts.count());
+  evaluate_ab(parts, x, a, b);
+  for (int i = 0; i < parts.count(); ++i) {
+    const double ar = a[2 * i] * frames[2 * i] + a[2 * i + 1] * frames[2 * i + 1];
+    const double nb = std::hypot(b[2 * i], b[2 * i + 1]);
+    if (!(ar > nb)) {
+      out[i] = kInf;
+      continue;
+    }
+    if (m == Measure::Quasiconformal)
+      out[i] = (ar + nb) / (ar - nb);
+    else
+      out[i] = std::max(std::hypot(a[2 * i], a[2 * i + 1]) + nb, 1.0 / (ar - nb));
+  }
+  return out;
+}
+
+int slack_index(Measure m, const ConformalParts& parts) {
+  return parts.num_x + (m == Measure::Isometric ? parts.count() : 0);
+}
+
+Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(slack_index(m, parts) + 1);
+  v.head(parts.num_x) = x;
+  if (m == Measure::Isometric) {
+    Eigen::VectorXd a, b;
+    evaluate_ab(parts, x, a, b);
+    for (int i = 0; i < parts.count(); ++i) v[parts.num_x + i] = std::hypot(a[2 * i], a[2 * i + 1]);
+  }
+  return v;
+}
+
+SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                         const Eigen::VectorXd& level, double tau_cap) {
+  const int E = parts.count(), tau = slack_index(m, parts);
+  const bool iso = m == Measure::Isometric;
+  SparseSocp p;
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> h;
+  int row = 0;
+  // The cone (head + tau, tail) with head = sum_j head_coef_j a_j + head_const and tail = b or
+  // a, written as G v + s = h: s = h - G v.
+  auto cone = [&](int i, double ka, double head_const, int u_sign, bool tail_a) {
+    const double r0 = frames[2 * i], r1 = frames[2 * i + 1];
+    if (ka != 0) {
+      add_row(parts.A, 2 * i, -ka * r0, row, t);
+      add_row(parts.A, 2 * i + 1, -ka * r1, row, t);
+    }
+    if (u_sign != 0) t.emplace_back(row, parts.num_x + i, -u_sign);
+    t.emplace_back(row, tau, -1.0);
+    h.push_back(ka * (r0 * parts.a0[2 * i] + r1 * parts.a0[2 * i + 1]) + head_const);
+    const auto& M = tail_a ? parts.A : parts.B;
+    const auto& o = tail_a ? parts.a0 : parts.b0;
+    for (int j = 0; j < 2; ++j) {
+      add_row(M, 2 * i + j, -1.0, row + 1 + j, t);
+      h.push_back(o[2 * i + j]);
+    }
+    p.dims.push_back(3);
+    row += 3;
+  };
+  for (int i = 0; i < E; ++i) {
+    if (!iso) {
+      cone(i, k_of_K(level[i]), 0.0, 0, false);  // |b| <= k <a, r> + tau
+    } else {
+      cone(i, 0.0, 0.0, +1, true);               // |a| <= u + tau
+      cone(i, 0.0, level[i], -1, false);         // |b| <= S - u + tau
+      cone(i, 1.0, -1.0 / level[i], 0, false);   // |b| <= <a, r> - 1/S + tau
+    }
+  }
+  // tau >= -tau_cap (keeps the slack bounded where the map's scale is free).
+  t.emplace_back(row, tau, -1.0);
+  h.push_back(tau_cap);
+  p.dims.push_back(1);
+  ++row;
+  p.G.resize(row, tau + 1);
+  p.G.setFromTriplets(t.begin(), t.end());
+  p.h = Eigen::Map<Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
+  p.c = Eigen::VectorXd::Zero(tau + 1);
+  p.c[tau] = 1.0;
+  return p;
+}
+
+}  // namespace strictmin::qc
