@@ -59,42 +59,6 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   return o;
 }
 
-nlohmann::json singularity_list(const std::vector<Singularity>& s) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& x : s) list.push_back({{"vertex", x.vertex}, {"index", x.quarters}});
-  return list;
-}
-
-nlohmann::json summary(const GParamArgs& a, const GParamOptions& o, const Mesh& mesh, const GParamOutcome& g) {
-  nlohmann::json s;
-  s["task"] = "gparam";
-  s["input"] = a.mesh;
-  s["output"] = a.output;
-  s["distortion_file"] = a.out.distortion;
-  s["method"] = method_name(o.solver.method);
-  s["measure"] = measure_name(o.measure);
-  s["field"] = a.field;
-  s["field_energy"] = g.field.energy;
-  s["elements"] = mesh.num_elements();
-  s["vertices"] = mesh.num_vertices();
-  s["euler_characteristic"] = g.graph.euler_characteristic();
-  s["singularities"] = g.singular.size();
-  s["singularity_indices"] = singularity_list(g.singular);
-  s["seam_edges"] = g.cut.num_cut_edges;
-  s["seam_branches"] = g.cut.branches.size();
-  s["cut_mesh_vertices"] = g.cut.num_wedges();
-  s["edge_length"] = g.edge_length;
-  s["seam_error"] = g.seam_error;
-  add_distortion_summary(s, g.measured.stats);
-  add_status_summary(s, g.result);
-  add_solver_summary(s, o.solver, g.result);
-  if (o.measure != Measure::FieldDeviation) add_local_global_summary(s, g.result);
-  s["field_time_s"] = g.field_time_s;
-  s["cut_time_s"] = g.cut_time_s;
-  s["solver_time_s"] = g.solve_time_s;
-  return s;
-}
-
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_paths(a.out);
@@ -111,7 +75,7 @@ int run_gparam(const GParamArgs& a) {
   if (!g.result.ok()) progress(a.out, "warning: " + status_name(g.result.status) + ": " + g.result.message);
   if (!a.field_out.empty()) write_field_file(a.field_out, field_directions(g.field, g.frames));
   if (!a.output.empty()) write_mesh(a.output, g.mapped);
-  nlohmann::json s = summary(a, o, mesh, g);
+  nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, a.output, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, g.measured.distortion);
   if (!a.report.dir.empty())

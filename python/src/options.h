@@ -10,7 +10,7 @@
 
 namespace strictmin::python {
 
-enum class Task { Deform, Param, Interp };
+enum class Task { Deform, Param, Interp, GParam };
 
 struct TaskOptions {
   SolverOptions solver;

@@ -1,10 +1,11 @@
-// deform, param, interp: options from keywords, the solve on a worker thread without the
+// deform, param, interp, gparam: options from keywords, the solve on a worker thread without the
 // GIL (run_released.h), the result as a dict with the command line's summary.
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -17,6 +18,7 @@
 #include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/param.h"
 
@@ -148,6 +150,73 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   return out;
 }
 
+// field_name: "smoothest", "curvature" or "given" (then `directions`, #F by 3).
+// edge_length / quads: None for the default (about 1000 unit squares).
+py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string& method, const std::string& measure,
+                   const std::string& field_name, const std::optional<RowMatrixXd>& directions,
+                   const std::optional<double>& edge_length, const std::optional<int>& quads,
+                   double curvature_alignment, const py::dict& kwargs, const py::object& progress) {
+  const auto t0 = Clock::now();
+  TaskOptions o = parse_options(Task::GParam, "gparam", method, kwargs);
+  GParamOptions options;
+  const auto m = parse_measure(measure);
+  if (!m || (*m != Measure::FieldDeviation && *m != Measure::Arap))
+    throw InputError("unknown or unavailable measure '" + measure + "' for gparam (use fd or arap)");
+  options.measure = *m;
+  if (edge_length && quads) throw InputError("give edge_length or quads, not both");
+  if (edge_length && !(*edge_length > 0 && std::isfinite(*edge_length)))
+    throw InputError("edge_length must be a positive finite number, got " + std::to_string(*edge_length));
+  if (quads && *quads <= 0) throw InputError("quads must be positive, got " + std::to_string(*quads));
+  if (edge_length) options.edge_length = *edge_length;
+  if (quads) options.quads = *quads;
+  if (!(curvature_alignment > 0 && std::isfinite(curvature_alignment)))
+    throw InputError("curvature_alignment must be a positive number, got " + std::to_string(curvature_alignment));
+  options.curvature_alignment = curvature_alignment;
+  if (field_name != "smoothest" && field_name != "curvature" && field_name != "given")
+    throw InputError("field takes 'smoothest', 'curvature' or a #F by 3 array of directions, not '" + field_name + "'");
+  options.curvature_field = field_name == "curvature";
+  const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
+  if (field_name == "given") {
+    if (!directions) throw InputError("field: no directions given");
+    options.field = Eigen::MatrixXd(*directions);
+    options.field_source = "field";
+  }
+  PyObject* callback = callback_or_null(progress);
+  wire_progress(o, callback);
+  if (callback)
+    options.progress = [callback](const std::string& line) {
+      py::gil_scoped_acquire gil;
+      py::dict record;
+      record["stage"] = "gparam";
+      record["message"] = line;
+      const py::handle function(callback);
+      function(record);
+    };
+  options.solver = o.solver;
+  options.local_global = o.local_global;
+  std::optional<GParamOutcome> g;
+  run_released([&] {
+    const auto threads = limit_threads(o.threads);
+    g = global_parametrize(mesh, options, "mesh");
+  });
+  nlohmann::json s = gparam_summary(mesh, options, *g, field_name, {});
+  s["time_s"] = seconds_since(t0);
+  s["version"] = STRICTMIN_VERSION;
+  const bool lg = options.measure != Measure::FieldDeviation;
+  py::dict out = result_dict(g->result, "uv", g->mapped.UV, g->measured.distortion, g->measured.weights,
+                             history_stage(options.solver, lg), s);
+  out["fuv"] = RowMatrixXi(g->mapped.FUV);
+  out["flipped"] = g->measured.flipped;
+  py::list singular;
+  for (const Singularity& x : g->singular) singular.append(py::make_tuple(x.vertex, x.quarters));
+  out["singularities"] = singular;
+  out["euler_characteristic"] = g->graph.euler_characteristic();
+  out["edge_length"] = g->edge_length;
+  out["seam_error"] = g->seam_error;
+  out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
+  return out;
+}
+
 py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd& V_target,
                    const std::vector<double>& times, const std::string& method, const py::dict& kwargs,
                    const py::object& progress) {
@@ -203,6 +272,9 @@ void bind_tasks(py::module_& m) {
         py::arg("method"), py::arg("measure"), py::arg("options"), py::arg("progress"));
   m.def("param", &param_py, py::arg("V"), py::arg("F"), py::arg("method"), py::arg("measure"), py::arg("options"),
         py::arg("progress"));
+  m.def("gparam", &gparam_py, py::arg("V"), py::arg("F"), py::arg("method"), py::arg("measure"), py::arg("field"),
+        py::arg("directions"), py::arg("edge_length"), py::arg("quads"), py::arg("curvature_alignment"),
+        py::arg("options"), py::arg("progress"));
   m.def("interp", &interp_py, py::arg("V"), py::arg("F"), py::arg("V_target"), py::arg("t"), py::arg("method"),
         py::arg("options"), py::arg("progress"));
 }

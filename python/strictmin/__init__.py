@@ -19,7 +19,7 @@ from ._result import Result
 
 __version__ = _strictmin.__version__
 
-__all__ = ["read_mesh", "write_mesh", "deform", "param", "interp", "distortion", "compare", "Result",
+__all__ = ["read_mesh", "write_mesh", "deform", "param", "gparam", "interp", "distortion", "compare", "Result",
            "Comparison"]
 
 class Comparison(tuple):
@@ -79,6 +79,8 @@ def _faces(F):
 
 def _format_record(r):
     """One progress line, as the command line prints it."""
+    if r.get("stage") == "gparam":
+        return f"gparam {r['message']}"
     if r.get("stage") == "strict":
         line = (f"  strict step {r['step']:3d}  k {r['k']:.8g}  fixed {r['fixed_now']} (total {r['fixed_total']})"
                 f"  solves {r['solves']}")
@@ -169,6 +171,49 @@ def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, v
     if init is not None:
         options["init"] = init
     return Result(_strictmin.param(V, F, method, measure, options, _progress(progress, verbose)))
+
+
+def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=0.01,
+           progress=None, verbose=False, **options):
+    """Globally parametrize a closed manifold triangle surface (one component, any genus)
+    guided by a cross field, with seams as linear constraints (the paper's Appendix A;
+    docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
+    field) or arap; field: None or "smoothest", "curvature", or #F by 3 directions;
+    edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
+    squares (default 1000). Options: the command line's flags with underscores. Returns a
+    Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
+    into uv), ``singularities`` [(vertex, index in quarters)], ``field`` (#F by 3, the field
+    used), ``euler_characteristic``, ``edge_length``, ``seam_error``."""
+    V = _vertices(V)
+    F = _faces(F)
+    directions = None
+    if field is None:
+        field = "smoothest"
+    elif not isinstance(field, str):
+        directions = np.asarray(field)
+        if directions.dtype.kind not in "fiu":
+            raise ValueError(f"field must be 'smoothest', 'curvature' or #F by 3 directions, "
+                             f"got dtype {directions.dtype}")
+        directions = np.ascontiguousarray(directions, dtype=np.float64)
+        if directions.ndim != 2 or directions.shape[1] != 3:
+            raise ValueError(f"field directions must be #F by 3, got shape {directions.shape}")
+        field = "given"
+    elif field == "given":
+        raise ValueError("field takes 'smoothest', 'curvature' or a #F by 3 array of directions, not 'given'")
+    if edge_length is not None:
+        if isinstance(edge_length, (bool, str)) or not isinstance(edge_length, numbers.Real):
+            raise TypeError("edge_length must be a number")
+        edge_length = float(edge_length)
+    if quads is not None:
+        if isinstance(quads, bool) or not isinstance(quads, numbers.Integral):
+            raise TypeError("quads must be an integer")
+        quads = int(quads)
+        if not -2**31 <= quads < 2**31:
+            raise ValueError(f"quads: {quads} is out of range")
+    if isinstance(curvature_alignment, (bool, str)) or not isinstance(curvature_alignment, numbers.Real):
+        raise TypeError("curvature_alignment must be a number")
+    return Result(_strictmin.gparam(V, F, method, measure, field, directions, edge_length, quads,
+                                    float(curvature_alignment), options, _progress(progress, verbose)))
 
 
 def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **options):

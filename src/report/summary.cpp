@@ -115,6 +115,47 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
   return s;
 }
 
+namespace {
+
+nlohmann::json singularity_list(const std::vector<Singularity>& s) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& x : s) list.push_back({{"vertex", x.vertex}, {"index", x.quarters}});
+  return list;
+}
+
+}  // namespace
+
+nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GParamOutcome& g,
+                              const std::string& field, const SummaryFiles& files) {
+  nlohmann::json s;
+  s["task"] = "gparam";
+  s["input"] = files.input;
+  s["output"] = files.output;
+  s["distortion_file"] = files.distortion_file;
+  s["method"] = method_name(o.solver.method);
+  s["measure"] = measure_name(o.measure);
+  s["field"] = field;
+  s["field_energy"] = g.field.energy;
+  s["elements"] = mesh.num_elements();
+  s["vertices"] = mesh.num_vertices();
+  s["euler_characteristic"] = g.graph.euler_characteristic();
+  s["singularities"] = g.singular.size();
+  s["singularity_indices"] = singularity_list(g.singular);
+  s["seam_edges"] = g.cut.num_cut_edges;
+  s["seam_branches"] = g.cut.branches.size();
+  s["cut_mesh_vertices"] = g.cut.num_wedges();
+  s["edge_length"] = g.edge_length;
+  s["seam_error"] = g.seam_error;
+  add_distortion_summary(s, g.measured.stats);
+  add_status_summary(s, g.result);
+  add_solver_summary(s, o.solver, g.result);
+  if (o.measure != Measure::FieldDeviation) add_local_global_summary(s, g.result);
+  s["field_time_s"] = g.field_time_s;
+  s["cut_time_s"] = g.cut_time_s;
+  s["solver_time_s"] = g.solve_time_s;
+  return s;
+}
+
 nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpOptions& options,
                               const std::string& source_name, const std::string& target_name) {
   nlohmann::json s;

@@ -9,6 +9,7 @@
 #include "strictmin/report/stats.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/method.h"
 #include "strictmin/tasks/param.h"
@@ -53,6 +54,11 @@ nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOpti
 // param: every key but time_s. The method is the initial map's name when options.init_only.
 nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, const ParamOutcome& outcome,
                              const SummaryFiles& files);
+
+// gparam: every key but time_s. `field`: what the field was ("smoothest", "curvature", or
+// the file or array that gave it).
+nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& options, const GParamOutcome& outcome,
+                              const std::string& field, const SummaryFiles& files);
 
 // interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
 // lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.

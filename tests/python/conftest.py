@@ -70,3 +70,28 @@ def run_cli(*args):
 
 def read_numbers(path):
     return np.loadtxt(path, ndmin=1)
+
+
+def ellipsoid(subdivisions=2, axes=(1.0, 0.8, 0.6)):
+    """A closed genus-0 surface: an icosahedron subdivided `subdivisions` times, projected to
+    the unit sphere and scaled by `axes` (outward-facing triangles)."""
+    t = (1.0 + 5 ** 0.5) / 2
+    V = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t],
+         [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]]
+    F = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6],
+         [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10],
+         [8, 6, 7], [9, 8, 1]]
+    V = [np.array(v, dtype=float) / np.linalg.norm(v) for v in V]
+    for _ in range(subdivisions):
+        middle = {}
+
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                m = V[a] + V[b]
+                V.append(m / np.linalg.norm(m))
+                middle[key] = len(V) - 1
+            return middle[key]
+        F = [f for a, b, c in F for f in ([a, mid(a, b), mid(c, a)], [b, mid(b, c), mid(a, b)],
+                                          [c, mid(c, a), mid(b, c)], [mid(a, b), mid(b, c), mid(c, a)])]
+    return np.array(V) * np.asarray(axes, dtype=float), np.array(F, dtype=np.int64)

@@ -1,0 +1,105 @@
+"""gparam: the global parametrization of a closed surface gives the command line's map and
+summary, singularities that satisfy Poincare-Hopf, and ValueError for bad input."""
+import numpy as np
+import pytest
+
+import strictmin
+from conftest import ellipsoid, grid, saddle
+from test_matches_cli import cli_run, same_summary
+
+
+@pytest.fixture(scope="module")
+def closed(tmp_path_factory):
+    """A small closed surface (320 triangles) as the tool reads it back from a file."""
+    V, F = ellipsoid(2)
+    mesh = tmp_path_factory.mktemp("gparam") / "ellipsoid.obj"
+    strictmin.write_mesh(mesh, V, F)
+    V, F = strictmin.read_mesh(mesh)
+    return mesh, V, F
+
+
+def test_matches_cli(tmp_path, closed):
+    mesh, V, F = closed
+    summary, dist = cli_run(tmp_path, ["gparam", mesh, "--method", "linf", "--quads", 60])
+    r = strictmin.gparam(V, F, method="linf", quads=60)
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.summary["task"] == "gparam" and r.status == summary["status"] and r.usable == summary["usable"]
+    assert r.lower_bound == pytest.approx(summary["lower_bound"], rel=1e-12, abs=1e-12)
+    assert r.singularities == [(s["vertex"], s["index"]) for s in summary["singularity_indices"]]
+    assert r.uv.shape == (summary["cut_mesh_vertices"], 2)
+    assert r.fuv.shape == F.shape and r.fuv.min() >= 0 and r.fuv.max() < len(r.uv)
+    assert r.edge_length == pytest.approx(summary["edge_length"], rel=1e-12)
+    assert "singularities=" in repr(r) and "task='gparam'" in repr(r)
+
+
+def test_matches_cli_arap_given_field(tmp_path, closed):
+    mesh, V, F = closed
+    field = strictmin.gparam(V, F, quads=60).field  # the smoothest field, written and read back
+    assert field.shape == (len(F), 3)
+    path = tmp_path / "field.txt"
+    np.savetxt(path, field, fmt="%.17g")
+    summary, dist = cli_run(tmp_path, ["gparam", mesh, "--field", path, "--measure", "arap", "--edge-length", 0.3,
+                                       "--lg-iterations", 3])
+    r = strictmin.gparam(V, F, measure="arap", field=np.loadtxt(path), edge_length=0.3, lg_iterations=3)
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    summary["field"] = "given"  # the tool names the file
+    same_summary(r.summary, summary)
+
+
+def test_poincare_hopf(closed):
+    _, V, F = closed
+    for field in ("smoothest", "curvature"):
+        r = strictmin.gparam(V, F, field=field, quads=60)
+        assert r.euler_characteristic == 2 == len(V) - len(F) * 3 // 2 + len(F)
+        assert r.singularities and all(q != 0 for _, q in r.singularities)
+        assert sum(q for _, q in r.singularities) == 4 * r.euler_characteristic
+        assert r.summary["singularities"] == len(r.singularities)
+
+
+def test_progress_records(closed):
+    _, V, F = closed
+    records = []
+    strictmin.gparam(V, F, method="linf", quads=60, progress=records.append)
+    phases = [r["message"] for r in records if r["stage"] == "gparam"]
+    assert any(p.startswith("field:") for p in phases) and any(p.startswith("cut:") for p in phases)
+    assert any(r["stage"] == "linf" for r in records)
+    assert all(strictmin._format_record(r) for r in records)
+
+
+def test_bad_input(closed):
+    _, V, F = closed
+    Vd, Fd = saddle(3)  # a disk: it has a boundary
+    with pytest.raises(ValueError, match="boundary|closed"):
+        strictmin.gparam(Vd, Fd)
+    Vp, Fp = grid(2)
+    with pytest.raises(ValueError):
+        strictmin.gparam(Vp, Fp)
+    with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
+        strictmin.gparam(V, F, edge_length=0)
+    with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
+        strictmin.gparam(V, F, edge_length=float("inf"))
+    with pytest.raises(ValueError, match="quads must be positive"):
+        strictmin.gparam(V, F, quads=0)
+    with pytest.raises(ValueError, match="not both"):
+        strictmin.gparam(V, F, edge_length=0.1, quads=10)
+    with pytest.raises(ValueError, match="for gparam"):
+        strictmin.gparam(V, F, measure="qc")
+    with pytest.raises(ValueError, match="unknown method"):
+        strictmin.gparam(V, F, method="best")
+    with pytest.raises(ValueError, match="field takes"):
+        strictmin.gparam(V, F, field="nicest")
+    with pytest.raises(ValueError, match="#F by 3"):
+        strictmin.gparam(V, F, field=np.ones((len(F), 2)))
+    with pytest.raises(ValueError, match="directions for"):
+        strictmin.gparam(V, F, field=np.ones((len(F) - 1, 3)))
+    with pytest.raises(ValueError, match="not finite"):
+        strictmin.gparam(V, F, field=np.full((len(F), 3), np.nan))
+    with pytest.raises(ValueError, match="curvature_alignment"):
+        strictmin.gparam(V, F, field="curvature", curvature_alignment=0)
+    with pytest.raises(ValueError, match="gap"):
+        strictmin.gparam(V, F, method="linf", gap=2.0)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'pin'"):
+        strictmin.gparam(V, F, pin=0)
+    with pytest.raises(TypeError):
+        strictmin.gparam(V, F, quads=1.5)
