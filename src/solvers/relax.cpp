@@ -39,6 +39,24 @@ int RelaxSweeper::num_colours() const { return impl_->colouring.num_colours; }
 
 const VertexColouring& RelaxSweeper::colouring() const { return impl_->colouring; }
 
+namespace relax_detail {
+
+void set_relax_status(Result& result, const RelaxOptions& options, bool moves_settled) {
+  StopState stop;
+  stop.criterion_met = options.move_tolerance > 0 ? moves_settled : true;
+  stop.cap_reached = !stop.criterion_met;
+  result.status = decide_status(stop);
+  if (moves_settled)
+    result.message = "converged: no vertex moved more than the move tolerance in sweep " + std::to_string(result.iterations);
+  else if (stop.criterion_met)
+    result.message = "ran the requested " + std::to_string(options.sweeps) + " sweeps";
+  else
+    result.message = "reached the sweep cap (" + std::to_string(options.sweeps) +
+                     ") with vertices still moving more than the move tolerance";
+}
+
+}  // namespace relax_detail
+
 bool RelaxOptions::is_valid(std::string* why) const {
   return OptionCheck(why)
       .at_least("sweeps", sweeps, 0)
@@ -98,19 +116,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
   }
   result.positions = std::move(X);
   result.distortion = field_deviation(problem, result.positions);
-  // The criterion: the requested number of sweeps, or, with a move tolerance, no vertex moving
-  // more than it (then running out of sweeps first is the cap).
-  StopState stop;
-  stop.criterion_met = options.move_tolerance > 0 ? moves_settled : true;
-  stop.cap_reached = !stop.criterion_met;
-  result.status = decide_status(stop);
-  if (moves_settled)
-    result.message = "converged: no vertex moved more than the move tolerance in sweep " + std::to_string(result.iterations);
-  else if (stop.criterion_met)
-    result.message = "ran the requested " + std::to_string(options.sweeps) + " sweeps";
-  else
-    result.message = "reached the sweep cap (" + std::to_string(options.sweeps) +
-                     ") with vertices still moving more than the move tolerance";
+  set_relax_status(result, options, moves_settled);
   result.time_s = elapsed();
   return result;
 }

@@ -167,14 +167,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
   }
   result.positions = std::move(X);
   result.distortion = field_deviation(p, result.positions);
-  // As relax(): the requested sweeps, or with a move tolerance no vertex moving more than it.
-  StopState stop;
-  stop.criterion_met = options.move_tolerance > 0 ? moves_settled : true;
-  stop.cap_reached = !stop.criterion_met;
-  result.status = decide_status(stop);
-  result.message = moves_settled ? "converged: no vertex moved more than the move tolerance"
-                   : stop.criterion_met ? "ran the requested " + std::to_string(options.sweeps) + " sweeps"
-                                        : "reached the sweep cap with vertices still moving more than the move tolerance";
+  set_relax_status(result, options, moves_settled);
   result.time_s = elapsed();
   return result;
 }

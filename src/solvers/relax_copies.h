@@ -7,6 +7,11 @@ namespace strictmin::relax_detail {
 
 // problem.copy_base must be set (one entry per vertex); fixed vertices and groups with
 // copy_base -1 hold still.
+// The status of a relaxation run (relax and relax_with_copies): the criterion is the
+// requested number of sweeps, or, with a move tolerance, no vertex moving more than it (then
+// running out of sweeps first is the cap).
+void set_relax_status(Result& result, const RelaxOptions& options, bool moves_settled);
+
 Result relax_with_copies(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options);
 
 }  // namespace strictmin::relax_detail

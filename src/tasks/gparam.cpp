@@ -30,22 +30,6 @@ void say(const GParamOptions& o, const std::string& line) {
   if (o.progress) o.progress(line);
 }
 
-// fd against the problem's (field) targets, flips from the Jacobians.
-MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
-  MapDistortion d;
-  const int E = p.num_elements();
-  d.distortion.resize(E);
-  d.flipped = Eigen::VectorXi::Zero(E);
-  d.weights = p.weights;
-  for (int e = 0; e < E; ++e) {
-    const Eigen::MatrixXd J = p.jacobian(e, X);
-    d.distortion(e) = (J - p.target(e)).norm();
-    d.flipped(e) = is_flipped(J) ? 1 : 0;
-  }
-  d.stats = distortion_stats(d.distortion, d.weights);
-  d.stats.flipped = d.flipped.sum();
-  return d;
-}
 
 void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();

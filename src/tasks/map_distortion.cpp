@@ -67,4 +67,20 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
   return map_distortion(rest, corner_images(rest.F, X), measure);
 }
 
+MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
+  MapDistortion d;
+  const int E = p.num_elements();
+  d.distortion.resize(E);
+  d.flipped = Eigen::VectorXi::Zero(E);
+  d.weights = p.weights;
+  for (int e = 0; e < E; ++e) {
+    const Eigen::MatrixXd J = p.jacobian(e, X);
+    d.distortion(e) = (J - p.target(e)).norm();
+    d.flipped(e) = is_flipped(J) ? 1 : 0;
+  }
+  d.stats = distortion_stats(d.distortion, d.weights);
+  d.stats.flipped = d.flipped.sum();
+  return d;
+}
+
 }  // namespace strictmin

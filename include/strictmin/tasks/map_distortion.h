@@ -33,4 +33,9 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
 // Corner images of vertex positions X (#V by k) through the elements F.
 Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X);
 
+// Field deviation against a problem's own targets (parametrization frames, the cross field):
+// D_T = ||J_T - R_T||_F of the map X (#V by n), flips from the Jacobians' signs.
+struct Problem;
+MapDistortion frame_distortion(const Problem& problem, const Eigen::MatrixXd& X);
+
 }  // namespace strictmin
