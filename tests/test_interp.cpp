@@ -1,4 +1,4 @@
-// Shape interpolation (paper Section 5.4; NOTES.md "Shape interpolation"): t = 0 and 1 give
+// Shape interpolation (paper Section 5.4; docs/maths.md section 6): t = 0 and 1 give
 // the poses, a rigidly moved target changes the frames only by a rigid motion, rotations are
 // unwrapped so a bar turned by more than 180 degrees does not fold, bad pairs are refused.
 #include <gtest/gtest.h>

@@ -76,7 +76,7 @@ TEST_P(MeasuresRandom, AgreeWithSvdReference) {
 INSTANTIATE_TEST_SUITE_P(Dimensions, MeasuresRandom, ::testing::Values(2, 3));
 
 TEST(Measures, LocalStepsNeverIncreaseDistortion) {
-  // min over rotations <= distance to any given rotation (the local step of NOTES.md).
+  // min over rotations <= distance to any given rotation (the local step of docs/maths.md).
   std::mt19937 rng(7);
   for (int d : {2, 3})
     for (int trial = 0; trial < 500; ++trial) {

@@ -304,7 +304,7 @@ class Generator {
   }
   // A vertex's ring as a relaxation sweep sees it: simplices around the origin (a fan of
   // triangles in 2D, random tets in 3D) under a perturbed map and rotated targets; the terms
-  // follow NOTES.md: M = sum_{j != v} q_j g_j^T - R, a = |g_v|^2, c = -M g_v / a,
+  // follow docs/maths.md: M = sum_{j != v} q_j g_j^T - R, a = |g_v|^2, c = -M g_v / a,
   // b = ||M||^2 - ||M g_v||^2 / a.
   Terms<d> mesh_like(int n) {
     Terms<d> terms;

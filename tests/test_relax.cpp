@@ -204,7 +204,7 @@ void lowers_the_maximum(const Problem& p, double factor) {
 TEST(Relax, LowersTheL2MaximumFigure2) { lowers_the_maximum(figure2_problem(), 0.75); }
 TEST(Relax, LowersTheL2MaximumTetBar) { lowers_the_maximum(tet_bar_problem(), 0.9); }
 
-// The ring of v as the paper states it (NOTES.md), built independently of the sweeper from
+// The ring of v as the paper states it (docs/maths.md), built independently of the sweeper from
 // Problem::jacobian: D_T(q)^2 = a ||q - c||^2 + b in absolute coordinates.
 template <int d>
 std::vector<RingTerm<d>> ring_terms(const Problem& p, const Eigen::MatrixXd& X, int v) {

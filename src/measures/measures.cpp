@@ -8,7 +8,7 @@
 namespace strictmin {
 namespace {
 
-// 2x2: J = A + B with A conformal, B anticonformal (NOTES.md, Section 7):
+// 2x2: J = A + B with A conformal, B anticonformal (docs/maths.md section 7):
 // a = ((J00 + J11)/2, (J10 - J01)/2), b = ((J00 - J11)/2, (J10 + J01)/2),
 // sigma_1 = |a| + |b|, signed sigma_2 = |a| - |b| (negative exactly when det J < 0).
 struct Conformal2 {

@@ -1,5 +1,5 @@
 // Exact 1-ring L-infinity solver: min_q max_T f_T(q), f_T(q) = a_T ||q - c_T||^2 + b_T
-// (paper Section 5.3, Proposition 3; ../shared/paper/NOTES.md).
+// (paper Section 5.3, Proposition 3; docs/maths.md).
 //
 // The problem is LP-type with combinatorial dimension d+1. We use the basic pivoting
 // scheme for LP-type problems: keep a support set B (<= d+1 terms) and its minimizer q_B;
@@ -54,7 +54,7 @@ struct Candidate {
 // reads
 //   2 e_i . x = alpha_i s + beta_i,  s = ||x||^2,  alpha_i = 1 - a_r / a_i (in [0, 1)),
 //   beta_i = ||e_i||^2 + (b_i - b_r) / a_i,
-// which is linear in x for a given s (the spheres of NOTES.md become planes after lifting
+// which is linear in x for a given s (the spheres of docs/maths.md become planes after lifting
 // s). Solved for a given s, x = x_u + s x_w within span{e_i}, and s = ||x||^2 becomes a
 // scalar quadratic; its roots whose barycentric coordinates are >= 0 are the candidates.
 template <int d>

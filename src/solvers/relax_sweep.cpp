@@ -1,5 +1,5 @@
-// One relaxation sweep (paper Algorithm 3, Section 5.3; NOTES.md "Proposition 3 and the
-// 1-ring problem"): each free vertex v solves min_q max_{T in ring(v)} ||J_T - R_T||^2 with
+// One relaxation sweep (paper Algorithm 3, Section 5.3; docs/maths.md section 2, "One vertex
+// at a time"): each free vertex v solves min_q max_{T in ring(v)} ||J_T - R_T||^2 with
 // every other vertex fixed and moves only if that lowers its ring's maximum; vertices of
 // one colour share no element, so they move in parallel.
 #include "relax_sweep.h"
@@ -119,7 +119,7 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
       const int v = s.colouring.order[idx];
       const int first = s.ring_start[idx], n = s.ring_start[idx + 1] - first;
       // Ring terms in displacement coordinates q = X_v(new) - X_v: J_T - R_T = M + q g^T
-      // with M the current deviation, so D_T^2 = a ||q - c||^2 + b (NOTES.md).
+      // with M the current deviation, so D_T^2 = a ||q - c||^2 + b (docs/maths.md).
       double current = 0;
       for (int k = 0; k < n; ++k) {
         const uint32_t entry = s.ring[first + k];

@@ -1,6 +1,6 @@
 #pragma once
-// Polar decomposition and rotation logarithms for shape interpolation (NOTES.md, "Shape
-// interpolation"): J = R Y with R a proper rotation and Y symmetric.
+// Polar decomposition and rotation logarithms for shape interpolation (docs/maths.md
+// section 6): J = R Y with R a proper rotation and Y symmetric.
 #include <Eigen/Core>
 
 namespace strictmin {

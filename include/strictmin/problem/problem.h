@@ -1,5 +1,5 @@
 #pragma once
-// The Problem: everything a solver needs, and nothing else (DESIGN.md, "the heart").
+// The Problem: everything a solver needs, and nothing else (docs/maths.md section 1).
 //
 // A piecewise-linear map sends vertex v to q_v (an image_dim vector). On element T with
 // corners v_0..v_m and barycentric gradients g_0..g_m (domain_dim vectors, in the element's

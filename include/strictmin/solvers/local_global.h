@@ -1,5 +1,5 @@
 #pragma once
-// Local-global iterations for ARAP and ASAP (paper Section 5.4, ../shared/paper/NOTES.md)
+// Local-global iterations for ARAP and ASAP (paper Section 5.4, docs/maths.md)
 // around any solver. The local step sets each element's target to the rotation (ARAP) or
 // similarity (ASAP) closest to its current Jacobian, which never increases any single D_T;
 // the global step runs the chosen solver with the targets fixed. With linf the maximum never

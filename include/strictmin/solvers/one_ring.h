@@ -1,6 +1,6 @@
 #pragma once
 // The 1-ring L-infinity problem of the relaxation algorithm (paper Section 5.3,
-// Proposition 3; ../shared/paper/NOTES.md). Moving one vertex to q, with every other vertex
+// Proposition 3; docs/maths.md). Moving one vertex to q, with every other vertex
 // fixed, each element T of its ring has D_T(q)^2 = a_T ||q - c_T||^2 + b_T, so
 //
 //   q* = argmin_q max_T  a_T ||q - c_T||^2 + b_T

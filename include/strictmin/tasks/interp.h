@@ -1,5 +1,5 @@
 #pragma once
-// Shape interpolation (paper Section 5.4 after Levi & Gotsman 2015; NOTES.md "Shape
+// Shape interpolation (paper Section 5.4 after Levi & Gotsman 2015; docs/maths.md "Shape
 // interpolation"). Source and target meshes with the same elements define per element
 // J_T = R_T Y_T (polar). At time t the target differential is R_T(t) Y_T(t) with
 // Y_T(t) = (1 - t) I + t Y_T and R_T(t) the rotation of the unwrapped logarithm scaled by t

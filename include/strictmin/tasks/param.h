@@ -1,7 +1,7 @@
 #pragma once
 // Free-boundary parametrization of a disk-topology surface (paper Section 6, the main use
 // case): an initial map (Tutte or LSCM), then the chosen method around it. arap / asap run
-// local-global iterations (NOTES.md, Section 5.4); fd takes its frames from the initial map
+// local-global iterations (docs/maths.md section 4); fd takes its frames from the initial map
 // (one local step: R_T = closest rotation to the initial J_T) and then runs the method once.
 // One boundary vertex is pinned where the initial map puts it: with a free boundary the
 // problem is otherwise translation invariant (singular for L2, unbounded directions for linf).

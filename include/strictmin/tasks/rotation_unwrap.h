@@ -1,6 +1,6 @@
 #pragma once
 // Rotations made consistent across neighbouring elements before they are interpolated
-// (NOTES.md, "Shape interpolation"): a rotation has many logarithms (angle + 2 pi k); a
+// (docs/maths.md section 6): a rotation has many logarithms (angle + 2 pi k); a
 // breadth-first search over the element adjacency picks, for every element, the one closest
 // to its parent's, so that a bar whose end turns by more than 180 degrees is interpolated
 // through the turn instead of back the short way (which would fold it).

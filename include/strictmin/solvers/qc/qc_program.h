@@ -1,5 +1,5 @@
 #pragma once
-// The paper's Section 7 measures as convex cones for fixed per-triangle frames (NOTES.md,
+// The paper's Section 7 measures as convex cones for fixed per-triangle frames (docs/maths.md,
 // "Section 7 measures as convex constraints"; Lipman 2012, Aigerman & Lipman 2013).
 //
 // In 2D, J = A + B with A conformal and B anticonformal, represented by the 2-vectors
