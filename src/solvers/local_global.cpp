@@ -9,7 +9,10 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/no_flips.h"
 #include "strictmin/solvers/relax.h"
+#include "anderson.h"
+#include "global_step.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -31,50 +34,97 @@ double max_of(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
   return m;
 }
 
+// A map's distortion is zero to rounding (a rigid or similar map reached exactly): the
+// relative change is meaningless there, and local-global is done.
+constexpr double kZeroDistortion = 1e-12;
+
+// The objective the safeguard compares: the area-weighted energy sum A_T D_T^2 for l2 (what
+// its global step minimizes), the maximum otherwise.
+double objective(const Problem& p, const Eigen::VectorXd& d, const Eigen::VectorXd& bounds, bool energy) {
+  return energy ? p.weights.dot(d.cwiseProduct(d)) : max_of(d, bounds);
+}
+
+// The loose gap of an inexact early linf step: a tenth of the last relative change of the
+// maximum, at most 1e-3 (0: the solver's own tolerance).
+double early_gap(double last_change) {
+  if (std::isnan(last_change)) return 1e-3;
+  return std::min(1e-3, 0.1 * last_change);
+}
+
 // The local-global iterations from out.positions: local step, then one global step (one
-// sweep for relax, a solve otherwise), until the cap or a small relative change of the max.
+// sweep for relax, a solve otherwise), optionally accelerated (Anderson, safeguarded) and cut
+// back to add no flips, until the cap or a small relative change of the max.
 // The status: the loop's own (converged, almost at the cap, or the cap) combined with the
 // last global step's, so that a global solve that stopped short shows (result.h).
 Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalGlobalOptions& o,
                std::chrono::steady_clock::time_point t0) {
-  std::unique_ptr<RelaxSweeper> sweeper;
-  if (solver.method == Method::Relax) sweeper = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance);
+  const GlobalStep step(p, solver, o.no_flips || solver.relax.no_flips);
+  const Eigen::VectorXd& bounds = solver.linf.element_bounds;
   const bool fixed_count = o.relative_change < 0;  // relax sweeps: run them all
-  double previous = max_of(local_distortion(p, out.positions, o), solver.linf.element_bounds);
+  const bool energy = solver.method == Method::L2;
+  const bool accelerate = o.acceleration_window > 0 && !step.is_sweep();
+  bool inexact = o.inexact_early_steps && solver.method == Method::Linf;
+  Anderson anderson(std::max(1, o.acceleration_window));
+  int accepted = 0, rejected = 0;
+  double previous = max_of(local_distortion(p, out.positions, o), bounds);
   double last_change = kNotApplicable;
   SolveStatus last_global = SolveStatus::Solved;
   std::string last_global_message;
   StopState stop;
   std::string reason;
-  for (int it = 1; it <= o.max_iterations; ++it) {
+  if (previous <= kZeroDistortion) {
+    stop.criterion_met = true;
+    reason = "converged: the start's distortion is zero to rounding (max " + std::to_string(previous) + ")";
+  }
+  for (int it = 1; it <= o.max_iterations && reason.empty(); ++it) {
+    const double gap = inexact ? early_gap(last_change) : 0.0;
     local_step(p, out.positions, o);
-    Result r;
-    if (sweeper) {
-      r.positions = out.positions;
-      sweeper->sweep(p, r.positions);
-    } else {
-      r = run_method(p, solver);
-      if (!r.usable()) {
-        out.status = r.status;
-        out.message = "global step " + std::to_string(it) + ": " + r.message;
-        out.distortion = local_distortion(p, out.positions, o);
-        out.time_s = seconds_since(t0);
-        return out;
-      }
-      out.lower_bound = r.lower_bound;
+    Result r = step.run(p, out.positions, gap);
+    if (!r.usable()) {
+      out.status = r.status;
+      out.message = "global step " + std::to_string(it) + ": " + r.message;
+      out.distortion = local_distortion(p, out.positions, o);
+      out.time_s = seconds_since(t0);
+      return out;
     }
-    const Eigen::VectorXd d = local_distortion(p, r.positions, o);
-    const double current = max_of(d, solver.linf.element_bounds);
+    if (!step.is_sweep()) out.lower_bound = r.lower_bound;
+    Eigen::MatrixXd next = std::move(r.positions);
+    if (o.no_flips && !step.is_sweep()) next = cut_back_to_no_new_flips(p, out.positions, next);
+    Eigen::VectorXd d = local_distortion(p, next, o);
+    double current = max_of(d, bounds);
     // An L-infinity global step cannot raise the maximum beyond its tolerance; keep the
-    // better map if rounding says otherwise.
+    // better map if rounding (or a loose early step) says otherwise.
     if (solver.method == Method::Linf && current > previous) {
+      if (inexact) {
+        inexact = false;  // repeat at the solver's own tolerance
+        continue;
+      }
       stop.criterion_met = true;
       reason = "converged: the maximum stopped decreasing";
       break;
     }
+    if (accelerate) {
+      // Anderson on the free dofs; taken only when no worse than the plain step.
+      const Eigen::VectorXd g = p.free_dofs(next);
+      const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);
+      if ((mixed - g).squaredNorm() > 0) {
+        const Eigen::MatrixXd X = p.with_free_dofs(mixed);
+        const Eigen::VectorXd da = local_distortion(p, X, o);
+        const bool keeps_orientation = !o.no_flips || flips_added(p, out.positions, X) == 0;
+        if (keeps_orientation && da.allFinite() &&
+            objective(p, da, bounds, energy) <= objective(p, d, bounds, energy)) {
+          next = X;
+          d = da;
+          current = max_of(d, bounds);
+          ++accepted;
+        } else {
+          ++rejected;
+        }
+      }
+    }
     last_global = r.status;
     last_global_message = r.message;
-    out.positions = r.positions;
+    out.positions = std::move(next);
     out.iterations = it;
     last_change = previous > 0 ? std::abs(previous - current) / previous : 0.0;
     IterationRecord rec;
@@ -82,14 +132,24 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     rec.max_distortion = current;
     rec.lower_bound = r.lower_bound;
     rec.relative_change = last_change;
+    if (accelerate) {
+      rec.accelerated_accepted = accepted;
+      rec.accelerated_rejected = rejected;
+    }
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
     if (o.progress) o.progress(rec);
     previous = current;
-    if (!fixed_count && last_change <= o.relative_change) {
+    if (current <= kZeroDistortion) {
+      stop.criterion_met = true;
+      reason = "converged: the distortion is zero to rounding";
+    } else if (!fixed_count && last_change <= o.relative_change) {
+      if (inexact) {
+        inexact = false;  // the criterion met with a loose step: certify with a full one
+        continue;
+      }
       stop.criterion_met = true;
       reason = "converged: relative change of the maximum below " + std::to_string(o.relative_change);
-      break;
     }
   }
   if (fixed_count && reason.empty()) {
@@ -102,6 +162,8 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     reason = "reached the iteration cap (" + std::to_string(o.max_iterations) + "); last relative change " +
              std::to_string(last_change);
   }
+  if (accelerate)
+    reason += "; accelerated steps taken " + std::to_string(accepted) + ", rejected " + std::to_string(rejected);
   out.status = worse_status(decide_status(stop), last_global);
   if (last_global != SolveStatus::Solved) reason += "; the last global step: " + last_global_message;
   out.message = reason;
@@ -128,6 +190,8 @@ Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, con
 bool LocalGlobalOptions::is_valid(std::string* why) const {
   return OptionCheck(why)
       .at_least("max_iterations", max_iterations, 0)
+      .that(acceleration_window >= 0 && acceleration_window <= 50,
+            "acceleration_window must be in [0, 50] (got " + std::to_string(acceleration_window) + ")")
       .that(!std::isnan(relative_change), "relative_change must be a number (got nan)")
       .ok();
 }
