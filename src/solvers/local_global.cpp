@@ -172,6 +172,24 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   return out;
 }
 
+// LocalGlobalOptions::l2_start: l2 local-global from X, its map when its maximum is lower.
+Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const SolverOptions& solver,
+                         const LocalGlobalOptions& o, std::string* note) {
+  SolverOptions l2 = solver;
+  l2.method = Method::L2;
+  LocalGlobalOptions lo = o;
+  lo.progress = nullptr;
+  Problem p = problem;
+  Result start;
+  start.positions = X;
+  const Result r = iterate(p, std::move(start), l2, lo, std::chrono::steady_clock::now());
+  const Eigen::VectorXd& bounds = solver.linf.element_bounds;
+  if (!r.usable() || !(max_of(r.distortion, bounds) < max_of(local_distortion(problem, X, o), bounds))) return X;
+  *note = "started from the l2 local-global map (" + std::to_string(r.iterations) + " steps, max " +
+          std::to_string(max_of(r.distortion, bounds)) + "); ";
+  return r.positions;
+}
+
 }  // namespace
 
 void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
@@ -213,6 +231,9 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     out.distortion = local_distortion(p, out.positions, o);
     return out;
   }
+  std::string start_note;
+  if (o.l2_start && solver.method != Method::L2 && solver.method != Method::Relax)
+    out.positions = l2_start(p, out.positions, solver, o, &start_note);
   if (solver.method == Method::Relax) {
     // Algorithm 3 improves another method's result (--init, default linf): here that
     // method's own local-global solution. Sweeps alone from a far start stall like any
@@ -255,13 +276,17 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
       inner.linf = linf;
       LocalGlobalOptions lo = o;
       lo.progress = nullptr;
+      lo.l2_start = false;  // done once, before the first level
       return local_global(level_problem, X, inner, lo);
     };
     Result r = solve_direct(p, direct, solver.linf);
+    r.message = start_note + r.message;
     r.time_s = seconds_since(t0);
     return r;
   }
-  return iterate(p, std::move(out), solver, o, t0);
+  Result r = iterate(p, std::move(out), solver, o, t0);
+  r.message = start_note + r.message;
+  return r;
 }
 
 }  // namespace strictmin

@@ -37,6 +37,10 @@ struct LocalGlobalOptions {
   // last relative change); the step that meets the stopping criterion is repeated at the
   // solver's own gap_tolerance, so the final map is certified as without this.
   bool inexact_early_steps = true;
+  // Methods other than l2 first run l2 local-global from the given start (cheap: one
+  // factorization, accelerated back-substitutions) and start from its map when its maximum
+  // is lower: the rotations are then close to the answer's and few costly global steps remain.
+  bool l2_start = true;
   // No new flips: every global step is cut back along the segment from the previous map
   // until no element with det J > 0 there has det J <= 0 (the field deviation with the
   // targets fixed is convex, so the cut step is still no worse than the previous map; the
