@@ -13,17 +13,11 @@
 #include "strictmin/solvers/relax.h"
 #include "anderson.h"
 #include "global_step.h"
+#include "local_targets.h"
 #include "option_check.h"
 
 namespace strictmin {
 namespace {
-
-Eigen::MatrixXd local_target(const Problem& p, int e, const Eigen::MatrixXd& J, const LocalGlobalOptions& o) {
-  if (o.local == LocalStep::Similarity) return closest_similarity(J);
-  if (o.shapes.size() == 0) return closest_rotation(J);
-  const Eigen::MatrixXd S = o.shapes.middleRows(e * p.image_dim, p.image_dim);
-  return closest_rotation(J * S.transpose()) * S;
-}
 
 // The largest distortion over the elements without a fixed bound (all of them unless a
 // direct level passes bounds): the quantity the global step minimizes.
@@ -66,7 +60,9 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   bool inexact = o.inexact_early_steps && solver.method == Method::Linf;
   Anderson anderson(std::max(1, o.acceleration_window));
   int accepted = 0, rejected = 0;
-  double previous = max_of(local_distortion(p, out.positions, o), bounds);
+  // The targets of the current map (its local step) and its distortion, in one pass.
+  double previous = max_of(local_targets(p, out.positions, o, &p.targets), bounds);
+  Eigen::MatrixXd targets;  // the local step of the candidate map
   double last_change = kNotApplicable;
   SolveStatus last_global = SolveStatus::Solved;
   std::string last_global_message;
@@ -78,7 +74,6 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   }
   for (int it = 1; it <= o.max_iterations && reason.empty(); ++it) {
     const double gap = inexact ? early_gap(last_change) : 0.0;
-    local_step(p, out.positions, o);
     Result r = step.run(p, out.positions, gap);
     if (!r.usable()) {
       out.status = r.status;
@@ -90,7 +85,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (!step.is_sweep()) out.lower_bound = r.lower_bound;
     Eigen::MatrixXd next = std::move(r.positions);
     if (o.no_flips && !step.is_sweep()) next = cut_back_to_no_new_flips(p, out.positions, next);
-    Eigen::VectorXd d = local_distortion(p, next, o);
+    Eigen::VectorXd d = local_targets(p, next, o, &targets);
     double current = max_of(d, bounds);
     // An L-infinity global step cannot raise the maximum beyond its tolerance; keep the
     // better map if rounding (or a loose early step) says otherwise.
@@ -109,12 +104,14 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
       const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);
       if ((mixed - g).squaredNorm() > 0) {
         const Eigen::MatrixXd X = p.with_free_dofs(mixed);
-        const Eigen::VectorXd da = local_distortion(p, X, o);
+        Eigen::MatrixXd accelerated_targets;
+        const Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
         const bool keeps_orientation = !o.no_flips || flips_added(p, out.positions, X) == 0;
         if (keeps_orientation && da.allFinite() &&
             objective(p, da, bounds, energy) <= objective(p, d, bounds, energy)) {
           next = X;
           d = da;
+          targets.swap(accelerated_targets);
           current = max_of(d, bounds);
           ++accepted;
         } else {
@@ -125,6 +122,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     last_global = r.status;
     last_global_message = r.message;
     out.positions = std::move(next);
+    p.targets.swap(targets);  // the next global step's targets: the local step of the new map
     out.iterations = it;
     last_change = previous > 0 ? std::abs(previous - current) / previous : 0.0;
     IterationRecord rec;
@@ -193,16 +191,11 @@ Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const
 }  // namespace
 
 void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
-  for (int e = 0; e < p.num_elements(); ++e) p.set_target(e, local_target(p, e, p.jacobian(e, X), o));
+  local_targets(p, X, o, &p.targets);
 }
 
 Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
-  Eigen::VectorXd d(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) {
-    const Eigen::MatrixXd J = p.jacobian(e, X);
-    d(e) = (J - local_target(p, e, J, o)).norm();
-  }
-  return d;
+  return local_targets(p, X, o, nullptr);
 }
 
 bool LocalGlobalOptions::is_valid(std::string* why) const {
