@@ -236,6 +236,27 @@ TEST(NoFlips, RelaxMovesStayInTheKernel) {
   EXPECT_LT(r.distortion.maxCoeff(), field_deviation(p, start).maxCoeff());
 }
 
+// Local-global with every global step cut back (not first tried without): no element
+// positive at the start flips, and the maximum never increases. Dragon from Tutte: the
+// unconstrained path passes through flips there.
+TEST(NoFlips, CutBackLocalGlobalFromTutte) {
+  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk" / "dragon.obj";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared data at " << file;
+  const Mesh mesh = read_mesh(file.string());
+  ParamOptions o;
+  o.solver.method = Method::Linf;
+  o.solver.linf.gap_tolerance = 1e-6;
+  o.local_global.max_iterations = 3;
+  o.local_global.no_flips_try_unconstrained = false;
+  o.no_flips = true;
+  const ParamOutcome r = parametrize(mesh, o, file.string());
+  EXPECT_EQ(r.flips_added, 0) << r.result.message;
+  EXPECT_EQ(r.flips, 0);
+  ASSERT_GE(r.result.history.size(), 2u) << r.result.message;
+  for (size_t i = 1; i < r.result.history.size(); ++i)
+    EXPECT_LE(r.result.history[i].max_distortion, r.result.history[i - 1].max_distortion * (1 + 1e-9));
+}
+
 TEST(NoFlips, CutBackAddsNoFlip) {
   Problem p = make_problem(make_grid(4, 4));
   Eigen::MatrixXd to = p.positions;

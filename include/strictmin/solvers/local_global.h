@@ -39,7 +39,9 @@ struct LocalGlobalOptions {
   bool inexact_early_steps = true;
   // Methods other than l2 first run l2 local-global from the given start (cheap: one
   // factorization, accelerated back-substitutions) and start from its map when its maximum
-  // is lower: the rotations are then close to the answer's and few costly global steps remain.
+  // is lower and it adds no flipped element to the start (a map with new flips leads linf to
+  // a worse local optimum): the rotations are then close to the answer's and few costly global
+  // steps remain.
   bool l2_start = true;
   // No new flips: every global step is cut back along the segment from the previous map
   // until no element with det J > 0 there has det J <= 0 (the field deviation with the
@@ -47,6 +49,10 @@ struct LocalGlobalOptions {
   // maximum keeps never increasing). Relax sweeps stay in each ring's kernel instead
   // (RelaxOptions::no_flips, set from this by local_global).
   bool no_flips = false;
+  // With no_flips, first run without it and keep that map when it adds no flip (the cut-back
+  // steps can stall where the path to the optimum passes through a flip); false: cut back
+  // from the first step.
+  bool no_flips_try_unconstrained = true;
   std::function<void(const IterationRecord&)> progress;
 
   // Ranges: max_iterations >= 0, acceleration_window in [0, 50], relative_change not NaN (negative: never stop on the
