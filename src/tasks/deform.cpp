@@ -16,6 +16,9 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (handles.empty()) throw InputError("deform needs at least one handle (--handles FILE)");
   DeformOutcome out;
   const bool surface = mesh.element_type() == ElementType::Triangle && !mesh.is_planar();
+  if (surface && options.solver.method == Method::Relax)
+    throw InputError("--method relax is not available for a triangle surface in 3D yet (its 1-ring solver is for "
+                     "square Jacobians); use linf or direct");
   out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
   const Eigen::MatrixXd rest = out.problem.positions;
   out.problem.fix(handles);
