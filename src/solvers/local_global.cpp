@@ -172,7 +172,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
 }
 
 // LocalGlobalOptions::l2_start: l2 local-global from X, its map when its maximum is lower
-// and it adds no flip to X.
+// and it has no more flipped elements than X.
 Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const SolverOptions& solver,
                          const LocalGlobalOptions& o, std::string* note) {
   SolverOptions l2 = solver;
@@ -185,9 +185,14 @@ Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const
   const Result r = iterate(p, std::move(start), l2, lo, std::chrono::steady_clock::now());
   const Eigen::VectorXd& bounds = solver.linf.element_bounds;
   if (!r.usable() || !(max_of(r.distortion, bounds) < max_of(local_distortion(problem, X, o), bounds))) return X;
-  // A map that flips elements the start has right leads linf into another basin (cow_disk
-  // from Tutte: 0.79 instead of 0.567): keep the start then.
-  if (flips_added(problem, X, r.positions) > 0) return X;
+  // A map with more flipped elements than the start leads linf into another basin (cow_disk
+  // from Tutte, flip-free: 0.79 instead of 0.567): keep the start then. Fewer is welcome (boy:
+  // 11 instead of the L2 fd start's 125, and 9 linf steps instead of 61).
+  const auto flipped = [&](const Eigen::MatrixXd& Y) {
+    const Eigen::VectorXi positive = positively_oriented(problem, Y);
+    return positive.size() - positive.sum();
+  };
+  if (flipped(r.positions) > flipped(X)) return X;
   *note = "started from the l2 local-global map (" + std::to_string(r.iterations) + " steps, max " +
           std::to_string(max_of(r.distortion, bounds)) + "); ";
   return r.positions;

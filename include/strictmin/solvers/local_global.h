@@ -39,9 +39,9 @@ struct LocalGlobalOptions {
   bool inexact_early_steps = true;
   // Methods other than l2 first run l2 local-global from the given start (cheap: one
   // factorization, accelerated back-substitutions) and start from its map when its maximum
-  // is lower and it adds no flipped element to the start (a map with new flips leads linf to
-  // a worse local optimum): the rotations are then close to the answer's and few costly global
-  // steps remain.
+  // is lower and it has no more flipped elements than the start (a map with more leads linf
+  // to a worse local optimum): the rotations are then close to the answer's and few costly
+  // global steps remain.
   bool l2_start = true;
   // No new flips: every global step is cut back along the segment from the previous map
   // until no element with det J > 0 there has det J <= 0 (the field deviation with the
