@@ -109,13 +109,17 @@ void print_iteration(const std::string& label, const IterationRecord& r) {
   field("relative change", r.relative_change, "  %s %.2e");
   field("largest move", r.largest_move, "  %s %.2e");
   field("decrement", r.decrement, "  %s %.2e");
+  if (r.accelerated_accepted >= 0) {
+    std::snprintf(buf, sizeof buf, "  accelerated %d taken / %d rejected", r.accelerated_accepted, r.accelerated_rejected);
+    line += buf;
+  }
   std::snprintf(buf, sizeof buf, "  %.2f s", r.time_s);
   line += buf;
   std::cerr << line << std::endl;
 }
 
 void print_local_global_progress(const IterationRecord& r, const std::string& indent) {
-  print_iteration(indent + "local-global iter", r);
+  print_iteration(indent + "local-global step", r);
 }
 
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs) {

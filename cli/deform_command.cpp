@@ -20,6 +20,8 @@ struct DeformArgs {
   std::string mesh, handles, example, output, measure = "fd", start = "l2";
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
+  int lg_acceleration = LocalGlobalOptions{}.acceleration_window;
+  bool no_flips = false;
   SolverArgs solver;
   OutputOptions out;
   ReportArgs report;
@@ -39,6 +41,8 @@ int run_deform(const DeformArgs& a) {
   options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
   options.local_global.max_iterations = a.lg_iterations;
   options.local_global.relative_change = a.lg_tolerance;
+  options.local_global.acceleration_window = a.lg_acceleration;
+  options.no_flips = a.no_flips;
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
       print_local_global_progress(r, "");
@@ -59,7 +63,8 @@ int run_deform(const DeformArgs& a) {
     std::vector<std::string> warnings;
     mesh = read_mesh(a.mesh, &warnings);
     for (const auto& w : warnings) progress(a.out, "warning: " + w);
-    const int dim = mesh.element_type() == ElementType::Tetrahedron ? 3 : 2;
+    // Tets and triangle surfaces in 3D move in 3D; planar triangles in 2D.
+    const int dim = mesh.element_type() == ElementType::Tetrahedron || !mesh.is_planar() ? 3 : 2;
     handles = read_handles(a.handles, mesh.num_vertices(), dim);
     input = a.mesh;
   }
@@ -89,9 +94,9 @@ void add_deform_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<DeformArgs>();
   CLI::App* cmd = app.add_subcommand(
       "deform",
-      "Deform a planar triangle mesh or a tet mesh so that the handle vertices reach their targets, with the least "
+      "Deform a planar triangle mesh, a triangle surface in 3D or a tet mesh so that the handle vertices reach their targets, with the least "
       "distortion ||J - I|| (field deviation) in the chosen norm.");
-  cmd->add_option("mesh", args->mesh, "Input mesh (.obj/.off planar triangles, .mesh tetrahedra)");
+  cmd->add_option("mesh", args->mesh, "Input mesh (.obj/.off triangles, planar or a 3D surface; .mesh tetrahedra)");
   cmd->add_option("--example", args->example, "Use a built-in example instead of a mesh: square, bar, tetbar");
   cmd->add_option("--handles", args->handles,
                   "Positional constraints: JSON {\"handles\":[{\"vertex\":i,\"position\":[x,y]}]} or text lines "
@@ -110,6 +115,14 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
       ->capture_default_str()
       ->check(at_least(0));
+  cmd->add_option("--lg-acceleration", args->lg_acceleration,
+                  "arap/asap: Anderson acceleration window of local-global (0: off); an accelerated step is "
+                  "taken only when it does not raise the maximum (l2: the energy)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 50));
+  cmd->add_flag("--no-flips", args->no_flips,
+                "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
+                "kept in their rings' kernels); the summary's flips_added counts them");
   cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);

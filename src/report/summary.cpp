@@ -78,6 +78,8 @@ nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOpti
   s["handles"] = handles;
   s["dimension"] = d.problem.image_dim;
   add_distortion_summary(s, d.measured.stats);
+  s["flips_added"] = d.flips_added;
+  s["no_flips"] = options.no_flips;
   add_status_summary(s, d.result);
   add_solver_summary(s, options.solver, d.result);
   if (options.measure == Measure::Arap || options.measure == Measure::Asap) add_local_global_summary(s, d.result);
@@ -101,6 +103,8 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
   s["boundary_vertices"] = p.boundary.size();
   add_distortion_summary(s, p.measured.stats);
   s["flips"] = p.flips;
+  s["flips_added"] = p.flips_added;
+  s["no_flips"] = options.no_flips;
   s["boundary_overlap"] = p.boundary_overlap;
   add_status_summary(s, p.result);
   if (!options.init_only) {

@@ -18,9 +18,11 @@ using namespace relax_detail;
 
 struct RelaxSweeper::Impl : SweepData {};
 
-RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance) : accept_tolerance_(accept_tolerance) {
+RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_flips)
+    : accept_tolerance_(accept_tolerance) {
   auto impl = std::make_shared<Impl>();
   build(p, *impl);
+  impl->no_flips = no_flips;
   impl_ = std::move(impl);
 }
 
@@ -84,6 +86,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
   }
   SweepData data;
   build(problem, data);
+  data.no_flips = options.no_flips;
   Result result;
   Eigen::MatrixXd X = initial;
   for (int v = 0; v < problem.num_vertices; ++v)

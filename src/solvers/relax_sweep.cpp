@@ -4,6 +4,7 @@
 // one colour share no element, so they move in parallel.
 #include "relax_sweep.h"
 
+#include <Eigen/LU>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -91,6 +92,36 @@ bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec
   return ring_improves(sc.before.data(), sc.after.data(), sc.area.data(), n, tau, sc.order.data());
 }
 
+// The largest fraction t in [0, 1] of the move q that keeps the ring in its kernel: every
+// ring element with det J_T > 0 keeps det > 0. Moving the vertex by t q changes J_T by
+// t q g^T, and det(J + t q g^T) = det J (1 + t g^T J^-1 q) (matrix determinant lemma) is
+// linear in t, so the kernel is a convex polytope in q and the bound is exact. A margin of
+// 10% of the distance to the boundary keeps the elements away from degenerate.
+template <int d>
+inline double term_value(const RingTerm<d>& t, const Vec<d>& q) {
+  return t.a * (q - t.centre).squaredNorm() + t.b;
+}
+
+template <int d>
+double kernel_step(const SweepData& s, const Problem& p, const Deviations& dev, int first, int n, const Vec<d>& q) {
+  const Eigen::Index rrows = p.targets.rows();
+  const double* R = p.targets.data();
+  double t = 1;
+  for (int k = 0; k < n; ++k) {
+    const uint32_t entry = s.ring[first + k];
+    const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
+    Mat<d> J = Eigen::Map<const Mat<d>>(&dev.M[static_cast<size_t>(e) * d * d]);
+    for (int col = 0; col < d; ++col)
+      for (int r = 0; r < d; ++r) J(r, col) += R[col * rrows + e * d + r];
+    const double det = J.determinant();
+    if (!(det > 0)) continue;  // already flipped: no constraint (no new flips)
+    const Eigen::Map<const Vec<d>> g(&s.gradients[(e * (d + 1) + j) * (d + 1)]);
+    const double rate = g.dot(J.inverse() * q);  // det(t) = det (1 + t rate)
+    if (rate < 0) t = std::min(t, 0.9 / -rate);
+  }
+  return t;
+}
+
 template <int d>
 double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Deviations& dev, double accept_tolerance,
                  double* max_distortion) {
@@ -144,10 +175,20 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
           for (int i = 0; i < sol.active; ++i)
             support = (support & ~(0xffu << (8 * i))) | static_cast<uint32_t>(sol.support[i]) << (8 * i);
         s.guesses[idx].store(support, std::memory_order_relaxed);
-        if (sol.value < current * (1 - kAcceptRelative) &&
-            accept_move<d>(s, sc, first, n, sol.q, sol.value, current, accept_tolerance)) {
+        Vec<d> step = sol.q;
+        double value = sol.value;
+        if (s.no_flips) {
+          const double t = kernel_step<d>(s, p, dev, first, n, step);
+          if (t < 1) {
+            step *= t;
+            value = 0;
+            for (int k = 0; k < n; ++k) value = std::max(value, term_value<d>(sc.terms[k], step));
+          }
+        }
+        if (value < current * (1 - kAcceptRelative) &&
+            accept_move<d>(s, sc, first, n, step, value, current, accept_tolerance)) {
           moved = true;
-          q = sol.q;
+          q = step;
           for (int r = 0; r < d; ++r) X[r * xrows + v] += q(r);
           acc.move = std::max(acc.move, q.norm());
           for (int k = 0; k < n; ++k) {  // the ring's deviations follow the move

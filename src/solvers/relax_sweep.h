@@ -28,6 +28,8 @@ struct SweepData {
   std::vector<double> weights;    // #E areas (volumes), for the acceptance test
   std::vector<int> closed;        // elements without a free corner: they never change
   int max_ring = 0;
+  // RelaxOptions::no_flips: moves stay in the ring's kernel (det J_T > 0 where it was).
+  bool no_flips = false;
   // Per position in colouring.order: the support of the vertex's last ring solve (up to 4
   // term indices within its ring, a byte each, 0xff = none), the next solve's first guess.
   // Relaxed atomics: only a heuristic, but sweeps on one sweeper may run concurrently.

@@ -2,14 +2,15 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/problem/parts.h"
+#include "strictmin/problem/surface_deformation.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/no_flips.h"
 #include "strictmin/tasks/conformal_method.h"
+#include "strictmin/tasks/deform_start.h"
 
 namespace strictmin {
 
 DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options) {
-  if (mesh.element_type() == ElementType::Triangle && !mesh.is_planar())
-    throw InputError("deform needs a planar triangle mesh (every z equal) or a tet mesh; this is a 3D surface");
   const bool local_global_measure = options.measure == Measure::Arap || options.measure == Measure::Asap;
   const bool conformal = is_conformal_measure(options.measure);
   if (conformal && mesh.element_type() != ElementType::Triangle)
@@ -20,7 +21,15 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
                      "' is not available for deformation yet");
   if (handles.empty()) throw InputError("deform needs at least one handle (--handles FILE)");
   DeformOutcome out;
-  out.problem = make_problem(mesh);
+  const bool surface = mesh.element_type() == ElementType::Triangle && !mesh.is_planar();
+  if (surface && conformal)
+    throw InputError("--measure " + measure_name(options.measure) +
+                     " is defined for planar triangle meshes (2D maps); this is a triangle surface in 3D");
+  if (surface && options.solver.method == Method::Relax)
+    throw InputError("--method relax is not available for a triangle surface in 3D yet (its 1-ring solver is for "
+                     "square Jacobians); use linf or direct");
+  out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
+  const Eigen::MatrixXd rest = out.problem.positions;
   out.problem.fix(handles);
   const std::vector<int> loose = unanchored_components(out.problem);
   if (!loose.empty())
@@ -29,19 +38,29 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (conformal) {
     // Section 7: from the L2 field-deviation map (where it flips, the first bisection step
     // looks for an orientation-preserving map, conformal.h).
-    out.result = run_conformal_method(out.problem, solve_l2(out.problem).positions, options.measure, options.solver,
-                                      &out.conformal);
+    out.start = solve_l2(out.problem).positions;
+    out.result = run_conformal_method(out.problem, out.start, options.measure, options.solver, &out.conformal);
   } else if (local_global_measure) {
     LocalGlobalOptions lg = options.local_global;
     lg.local = options.measure == Measure::Asap ? LocalStep::Similarity : LocalStep::Rotation;
+    lg.no_flips = lg.no_flips || options.no_flips;
+    SolverOptions solver = options.solver;
+    solver.relax.no_flips = solver.relax.no_flips || options.no_flips;
     // Inverted elements of the starting map do not stop the method (paper Figure 10): the
     // local step projects them to the closest proper rotation like any other.
-    const Eigen::MatrixXd start = options.start == DeformStart::L2 ? solve_l2(out.problem).positions
-                                                                  : out.problem.positions;
-    out.result = local_global(out.problem, start, options.solver, lg);
+    out.start = options.start == DeformStart::L2 ? deform_start(out.problem, rest, handles, lg) : out.problem.positions;
+    out.result = local_global(out.problem, out.start, solver, lg);
   } else {
-    out.result = run_method(out.problem, options.solver);
+    out.start = out.problem.positions;
+    SolverOptions solver = options.solver;
+    solver.relax.no_flips = solver.relax.no_flips || options.no_flips;
+    out.result = run_method(out.problem, solver);
+    // One solve: cut it back along the segment from the start (fd is convex: the cut map's
+    // maximum is at most the start's) when it adds flips.
+    if (options.no_flips && out.result.usable())
+      out.result.positions = cut_back_to_no_new_flips(out.problem, out.start, out.result.positions);
   }
+  out.flips_added = flips_added(out.problem, out.start, out.result.positions);
   out.deformed = mesh;
   out.deformed.V = out.result.positions;
   out.measured = map_distortion(mesh, corner_images(mesh.F, out.result.positions), options.measure);

@@ -9,6 +9,7 @@
 #include "strictmin/param/uv_checks.h"
 #include "strictmin/report/stats.h"
 #include "strictmin/tasks/conformal_method.h"
+#include "strictmin/solvers/no_flips.h"
 
 namespace strictmin {
 namespace {
@@ -43,6 +44,9 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   p.fix(pins);
   LocalGlobalOptions lg = options.local_global;
   lg.local = m == Measure::Asap ? LocalStep::Similarity : LocalStep::Rotation;
+  lg.no_flips = lg.no_flips || options.no_flips;
+  SolverOptions solver = options.solver;
+  solver.relax.no_flips = solver.relax.no_flips || options.no_flips;
   if (options.init_only) {
     out.result.positions = out.initial;
     out.result.time_s = out.init_time_s;
@@ -51,9 +55,13 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
     out.result = run_conformal_method(p, out.initial, m, options.solver, &out.conformal);
   } else if (m == Measure::FieldDeviation) {
     local_step(p, out.initial, lg);  // the frames: rotations of the initial map
-    out.result = run_method(p, options.solver);
+    out.result = run_method(p, solver);
+    // One solve: cut back along the segment from the initial map when it adds flips (fd is
+    // convex, so the cut map's maximum is at most the initial map's).
+    if (options.no_flips && out.result.usable())
+      out.result.positions = cut_back_to_no_new_flips(p, out.initial, out.result.positions);
   } else {
-    out.result = local_global(p, out.initial, options.solver, lg);
+    out.result = local_global(p, out.initial, solver, lg);
   }
   const Eigen::MatrixXd& X = out.result.positions;
   out.mapped = mesh;
@@ -62,6 +70,7 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   out.measured = m == Measure::FieldDeviation ? frame_distortion(p, X) : map_distortion(mesh, corner_images(mesh.F, X), m);
   if (options.init_only) out.result.distortion = out.measured.distortion;
   out.flips = count_flips(mesh.F, X);
+  out.flips_added = flips_added(p, out.initial, X);
   out.boundary_overlap = polygon_self_intersects(X, out.boundary);
   return out;
 }

@@ -131,7 +131,8 @@ def test_options(square):
 def test_tasks(square):
     V, F, idx, pos = square
     surface = np.column_stack([V, V[:, 0] * V[:, 1]])
-    with pytest.raises(ValueError, match="3D surface"):
+    # A 3D surface deforms in 3D: handles with 2 coordinates are refused.
+    with pytest.raises(ValueError, match="2 coordinates, the map is 3D"):
         strictmin.deform(surface, F, idx, np.column_stack([pos]))
     with pytest.raises(ValueError, match="'relax' is not available"):
         strictmin.param(surface, F, measure="qc", method="relax")

@@ -27,9 +27,35 @@ struct LocalGlobalOptions {
   Eigen::MatrixXd shapes;          // #E*n by m (as Problem::targets); empty: identity
   int max_iterations = 100;
   double relative_change = 1e-4;   // stop when |max_k - max_{k-1}| <= this * max_{k-1}
+  // Anderson acceleration of the local-global fixed point (Peng et al. 2018) with this many
+  // previous steps (0: off). An accelerated map is taken only when its objective (the maximum
+  // for linf, lp, irls and direct; the energy sum A_T D_T^2 for l2) is no worse than the
+  // plain global step's, so the maximum still never increases with linf. Not used for relax
+  // sweeps.
+  int acceleration_window = 5;
+  // linf global steps: early ones run to a looser gap (at most 1e-3, about a tenth of the
+  // last relative change); the step that meets the stopping criterion is repeated at the
+  // solver's own gap_tolerance, so the final map is certified as without this.
+  bool inexact_early_steps = true;
+  // Methods other than l2 first run l2 local-global from the given start (cheap: one
+  // factorization, accelerated back-substitutions) and start from its map when its maximum
+  // is lower and it has no more flipped elements than the start (a map with more leads linf
+  // to a worse local optimum): the rotations are then close to the answer's and few costly
+  // global steps remain.
+  bool l2_start = true;
+  // No new flips: every global step is cut back along the segment from the previous map
+  // until no element with det J > 0 there has det J <= 0 (the field deviation with the
+  // targets fixed is convex, so the cut step is still no worse than the previous map; the
+  // maximum keeps never increasing). Relax sweeps stay in each ring's kernel instead
+  // (RelaxOptions::no_flips, set from this by local_global).
+  bool no_flips = false;
+  // With no_flips, first run without it and keep that map when it adds no flip (the cut-back
+  // steps can stall where the path to the optimum passes through a flip); false: cut back
+  // from the first step.
+  bool no_flips_try_unconstrained = true;
   std::function<void(const IterationRecord&)> progress;
 
-  // Ranges: max_iterations >= 0, relative_change not NaN (negative: never stop on the
+  // Ranges: max_iterations >= 0, acceleration_window in [0, 50], relative_change not NaN (negative: never stop on the
   // change), shapes empty or #E*n by m (checked against the problem by local_global).
   bool is_valid(std::string* why = nullptr) const;
 };

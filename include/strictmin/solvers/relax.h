@@ -29,6 +29,12 @@ struct RelaxOptions {
   // level (the Figure 2 square ends with all 800 triangles at 0.3). Larger values stop
   // earlier, further from the L-infinity optimum when starting from L2 (docs/strict.md).
   double accept_tolerance = 1e-4;
+  // No new flips (paper Section 5.3's remark): every move stays in the ring's kernel, det J_T
+  // > 0 on each ring element that has it before the move (a half-space in the vertex's
+  // position by the matrix determinant lemma, so the 1-ring problem stays convex); a move
+  // past the kernel's boundary is shortened into it (which still lowers the ring's maximum:
+  // its terms are convex).
+  bool no_flips = false;
   // After each sweep: sweep index (1-based), current maximum field deviation, the largest
   // distance a vertex moved (largest_move), elapsed seconds.
   std::function<void(const IterationRecord&)> progress;
@@ -41,8 +47,9 @@ struct RelaxOptions {
 // free vertex, the colouring). Targets may change between sweeps (ARAP local steps).
 class RelaxSweeper {
  public:
-  // accept_tolerance: as RelaxOptions::accept_tolerance.
-  explicit RelaxSweeper(const Problem& problem, double accept_tolerance = RelaxOptions{}.accept_tolerance);
+  // accept_tolerance, no_flips: as RelaxOptions.
+  explicit RelaxSweeper(const Problem& problem, double accept_tolerance = RelaxOptions{}.accept_tolerance,
+                        bool no_flips = false);
   // One sweep over every free vertex, colour by colour, moving X (#V by image_dim) in place.
   // Returns the largest distance a vertex moved.
   double sweep(const Problem& problem, Eigen::MatrixXd& X) const;

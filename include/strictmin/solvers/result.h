@@ -58,6 +58,9 @@ struct IterationRecord {
   double relative_change = kNotApplicable;  // |max - previous max| / previous max (local-global)
   double largest_move = kNotApplicable;     // largest vertex displacement (relax sweeps)
   double decrement = kNotApplicable;        // Newton decrement^2 / 2 relative to f (lp)
+  // Local-global with acceleration: accelerated steps accepted / rejected so far (-1: n/a).
+  int accelerated_accepted = -1;
+  int accelerated_rejected = -1;
   double time_s = 0;                        // since the solve started
 };
 

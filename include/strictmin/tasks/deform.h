@@ -1,7 +1,8 @@
 #pragma once
-// Deformation with positional constraints (planar triangle meshes and tet meshes): the
-// handles are fixed, every element's target is the identity (field deviation ||J - I||);
-// planar meshes also take the Section 7 measures qc and iso (solvers/conformal.h).
+// Deformation with positional constraints (planar triangle meshes, tet meshes, and triangle
+// surfaces in 3D): the handles are fixed, every element's target is the identity (field
+// deviation ||J - I||; on a surface the rest frame, surface_deformation.h); planar meshes also
+// take the Section 7 measures qc and iso (solvers/conformal.h).
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,7 +26,13 @@ struct DeformOptions {
   // fd: ||J - I||; arap / asap: local-global iterations around the solver.
   Measure measure = Measure::FieldDeviation;
   LocalGlobalOptions local_global;  // arap / asap (local is set from measure)
-  DeformStart start = DeformStart::L2;  // arap / asap: start from the L2 fd map or the rest pose
+  // arap / asap: start from the L2 fd map (the better of identity targets and targets turned
+  // by the handles' best rotation, deform_start.h) or the rest pose
+  DeformStart start = DeformStart::L2;
+  // No new flips relative to the start (planar and tet meshes): every global step is cut
+  // back to add none, relax moves stay in their rings' kernels (LocalGlobalOptions::no_flips,
+  // RelaxOptions::no_flips).
+  bool no_flips = false;
 };
 
 struct DeformOutcome {
@@ -34,10 +41,11 @@ struct DeformOutcome {
   Mesh deformed;          // the input mesh with the new positions
   MapDistortion measured; // distortion of the result in options.measure, stats, flips
   ConformalStats conformal;  // qc / iso: bisection steps, frame iterations
+  Eigen::MatrixXd start;  // the map the method started from (#V by image_dim)
+  int flips_added = 0;    // elements flipped in the result and not in the start
 };
 
-// Throws InputError for input the task can't take: a surface (non-planar triangle) mesh,
-// no handles, a part of the mesh without a handle, a measure the method can't minimize.
+// Throws InputError for input the task can't take: no handles, a part of the mesh without a handle, a measure the method can't minimize.
 DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options);
 
 }  // namespace strictmin

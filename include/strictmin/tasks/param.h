@@ -29,6 +29,9 @@ struct ParamOptions {
   bool init_only = false;           // the initial map is the result (--method tutte|lscm)
   SolverOptions solver;
   LocalGlobalOptions local_global;  // arap / asap (local is set from measure)
+  // No new flips relative to the initial map (flip-free from Tutte): every global step cut
+  // back to add none, relax moves inside their rings' kernels (local_global.h, relax.h).
+  bool no_flips = false;
 };
 
 struct ParamOutcome {
@@ -40,6 +43,7 @@ struct ParamOutcome {
   Mesh mapped;                 // the input mesh with UV = the map, FUV = F
   MapDistortion measured;      // in options.measure (fd: against the frames)
   int flips = 0;               // triangles against the majority orientation
+  int flips_added = 0;         // triangles with det J <= 0 in the map and > 0 in the initial map
   bool boundary_overlap = false;
   ConformalStats conformal;    // qc / iso: bisection steps, frame iterations
 };

@@ -1,0 +1,39 @@
+#include "global_step.h"
+
+#include <algorithm>
+
+namespace strictmin {
+
+GlobalStep::GlobalStep(const Problem& p, const SolverOptions& solver, bool no_flips) : solver_(solver) {
+  if (solver.method == Method::Relax)
+    sweeper_ = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance, no_flips);
+  else if (solver.method == Method::L2 && !p.has_equalities())
+    l2_ = std::make_unique<L2Solver>(p);
+}
+
+Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap) const {
+  Result r;
+  if (sweeper_) {
+    r.positions = X;
+    sweeper_->sweep(p, r.positions);
+    r.iterations = 1;
+    return r;
+  }
+  if (l2_) {
+    r.status = l2_->status();
+    r.message = l2_->message();
+    r.positions = l2_->solve(p);
+    r.iterations = 1;
+    return r;
+  }
+  // Start from the current map (solve_linf takes it when it beats the L2 map).
+  p.positions = X;
+  SolverOptions s = solver_;
+  if (s.method == Method::Linf && gap > s.linf.gap_tolerance) {
+    s.linf.gap_tolerance = gap;
+    s.linf.acceptable_gap_tolerance = std::max(s.linf.acceptable_gap_tolerance, gap);
+  }
+  return run_method(p, s);
+}
+
+}  // namespace strictmin

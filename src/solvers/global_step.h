@@ -1,0 +1,33 @@
+#pragma once
+// The global step of local-global (paper Section 5.4): the chosen method with the targets
+// fixed, run from the current map. Keeps what can be reused across steps: the L2 matrix's
+// factorization (only the right-hand side changes with the targets, Liu et al. 2008) and
+// the relaxation's rings and colouring.
+#include <Eigen/Core>
+#include <memory>
+
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/relax.h"
+#include "strictmin/solvers/result.h"
+#include "strictmin/tasks/method.h"
+
+namespace strictmin {
+
+class GlobalStep {
+ public:
+  // relax: one sweep per step (its rings in the kernel when no_flips); l2: one
+  // factorization for every step; the other methods: a solve from the current map.
+  GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips);
+  // The step for the problem's current targets from the map X (#V by n). gap > 0 loosens a
+  // linf solve's gap tolerance to it (an inexact early step).
+  Result run(Problem& problem, const Eigen::MatrixXd& X, double gap) const;
+  bool is_sweep() const { return static_cast<bool>(sweeper_); }
+
+ private:
+  SolverOptions solver_;
+  std::unique_ptr<L2Solver> l2_;
+  std::unique_ptr<RelaxSweeper> sweeper_;
+};
+
+}  // namespace strictmin
