@@ -23,7 +23,7 @@ Mat<n, m> jacobian(const Problem& p, int e, const Eigen::MatrixXd& X) {
 }
 
 // 2x2: the closest rotation is the direction of the conformal part a = ((J00 + J11) / 2,
-// (J10 - J01) / 2), the closest similarity the conformal part itself (NOTES.md).
+// (J10 - J01) / 2), the closest similarity the conformal part itself (docs/maths.md).
 Mat<2, 2> target_2x2(const Mat<2, 2>& J, LocalStep step) {
   const double a0 = 0.5 * (J(0, 0) + J(1, 1)), a1 = 0.5 * (J(1, 0) - J(0, 1));
   double c = a0, s = a1;

@@ -1,6 +1,6 @@
 #pragma once
 // The local step of local-global in one pass over the elements (paper Section 5.4,
-// NOTES.md): each element's target, the rotation (or similarity) closest to J_T, and its
+// docs/maths.md): each element's target, the rotation (or similarity) closest to J_T, and its
 // distance D_T = ||J_T - target||. Fixed-size arithmetic for the 2x2, 3x3 and 3x2 (surface)
 // Jacobians, elements in parallel: this runs twice per global step.
 #include <Eigen/Core>
