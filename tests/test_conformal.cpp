@@ -131,6 +131,9 @@ TEST(Conformal, DirectAndLinfQcAreNearlyConstantWithTheSameMaximum) {
   const double a_linf = area_near_max(p, linf, 0.01), a_direct = area_near_max(p, direct, 0.01);
   EXPECT_GT(a_linf, 0.8);
   EXPECT_GT(a_direct, 0.8);
+  // Strict is closer to a constant-K (Teichmueller-like) map, if only slightly here: direct
+  // puts at least as much area near the maximum as linf (measured 0.85 against 0.84).
+  EXPECT_GE(a_direct, a_linf);
   EXPECT_EQ(flipped(p, linf.positions), 0);
   EXPECT_EQ(flipped(p, direct.positions), 0);
   std::printf("figure 2 qc: K linf %.9f direct %.9f; area within 1%% of max: linf %.4f direct %.4f (of 1); "
