@@ -108,9 +108,12 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();
-  cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap")->capture_default_str();
-  cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative)")
-      ->capture_default_str();
+  cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
+  cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative, >= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);

@@ -19,10 +19,7 @@ namespace {
 
 struct ParamArgs {
   std::string mesh, output, measure = "arap";
-  int lg_iterations = 100;
-  double lg_tolerance = 1e-4;
-  int lg_acceleration = LocalGlobalOptions{}.acceleration_window;
-  bool no_flips = false;
+  LocalGlobalArgs lg;
   SolverArgs solver;
   OutputOptions out;
   ReportArgs report;
@@ -68,10 +65,8 @@ int run_param(ParamArgs a) {
     a.solver.method = "l2";
   }
   options.solver = make_solver_options(a.solver, a.out);
-  options.local_global.max_iterations = a.lg_iterations;
-  options.local_global.relative_change = a.lg_tolerance;
-  options.local_global.acceleration_window = a.lg_acceleration;
-  options.no_flips = a.no_flips;
+  apply_local_global_options(a.lg, options.local_global);
+  options.no_flips = a.lg.no_flips;
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
       print_local_global_progress(r, "");
@@ -112,21 +107,7 @@ void add_param_command(CLI::App& app, int& exit_code) {
                   "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)) with methods l2 (the Tutte/LSCM start), linf, "
                   "direct: bisection over convex cones, never a flipped triangle")
       ->capture_default_str();
-  cmd->add_option("--lg-iterations", args->lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
-      ->capture_default_str()
-      ->check(at_least(1));
-  cmd->add_option("--lg-tolerance", args->lg_tolerance,
-                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
-      ->capture_default_str()
-      ->check(at_least(0));
-  cmd->add_option("--lg-acceleration", args->lg_acceleration,
-                  "arap/asap: Anderson acceleration window of local-global (0: off); an accelerated step is "
-                  "taken only when it does not raise the maximum (l2: the energy)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 50));
-  cmd->add_flag("--no-flips", args->no_flips,
-                "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
-                "kept in their rings' kernels); the summary's flips_added counts them");
+  add_local_global_options(*cmd, args->lg);
   add_solver_options(*cmd, args->solver);
   cmd->get_option("--method")
       ->description("tutte or lscm (the starting map itself), l2 (Liu et al. 2008 ARAP), linf (least maximum), "

@@ -58,6 +58,30 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
       ->check(at_least(1));
 }
 
+void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
+  cmd.add_option("--lg-iterations", a.lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
+  cmd.add_option("--lg-tolerance", a.lg_tolerance,
+                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
+  cmd.add_option("--lg-acceleration", a.lg_acceleration,
+                  "arap/asap: Anderson acceleration window of local-global (0: off); an accelerated step is "
+                  "taken only when it does not raise the maximum (l2: the energy)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 50));
+  cmd.add_flag("--no-flips", a.no_flips,
+                "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
+                "kept in their rings' kernels); the summary's flips_added counts them");
+}
+
+void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o) {
+  o.max_iterations = a.lg_iterations;
+  o.relative_change = a.lg_tolerance;
+  o.acceleration_window = a.lg_acceleration;
+}
+
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {
   SolverOptions o;
   const auto method = parse_method(a.method);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common.h"
+#include "strictmin/solvers/local_global.h"
 #include "strictmin/tasks/method.h"
 
 namespace strictmin::cli {
@@ -32,6 +33,17 @@ struct SolverArgs {
 };
 
 void add_solver_options(CLI::App& cmd, SolverArgs& args);
+
+// arap / asap local-global flags of deform and param, and --no-flips.
+struct LocalGlobalArgs {
+  int lg_iterations = 100;
+  double lg_tolerance = 1e-4;
+  int lg_acceleration = LocalGlobalOptions{}.acceleration_window;
+  bool no_flips = false;
+};
+void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& args);
+// Sets the local-global options from the flags (the caller sets no_flips on its task).
+void apply_local_global_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
 
 // Parses the method names and wires progress reporting (stderr unless --quiet).
 // Throws InputError for an unknown method.
