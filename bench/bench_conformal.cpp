@@ -17,7 +17,7 @@
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/l2.h"
-#include "strictmin/solvers/qc/bisection.h"
+#include "solvers/qc/bisection.h"
 #include "strictmin/tasks/param.h"
 
 using namespace strictmin;

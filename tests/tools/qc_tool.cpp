@@ -12,8 +12,8 @@
 #include <string>
 
 #include "strictmin/solvers/l2.h"
-#include "strictmin/solvers/qc/qc_program.h"
-#include "strictmin/solvers/qc/sparse_socp.h"
+#include "solvers/qc/qc_program.h"
+#include "solvers/qc/sparse_socp.h"
 #include "strictmin/tasks/examples.h"
 
 using namespace strictmin;

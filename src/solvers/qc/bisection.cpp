@@ -1,4 +1,4 @@
-#include "strictmin/solvers/qc/bisection.h"
+#include "solvers/qc/bisection.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/conformal.h"
-#include "strictmin/solvers/qc/bisection.h"
+#include "solvers/qc/bisection.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin {

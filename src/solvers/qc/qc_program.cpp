@@ -1,4 +1,4 @@
-#include "strictmin/solvers/qc/qc_program.h"
+#include "solvers/qc/qc_program.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "strictmin/solvers/qc/sparse_socp.h"
+#include "solvers/qc/sparse_socp.h"
 
 #include <algorithm>
 #include <cmath>

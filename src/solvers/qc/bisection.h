@@ -7,8 +7,8 @@
 #include <string>
 
 #include "strictmin/measures/measures.h"
-#include "strictmin/solvers/qc/qc_program.h"
-#include "strictmin/solvers/qc/sparse_socp.h"
+#include "solvers/qc/qc_program.h"
+#include "solvers/qc/sparse_socp.h"
 
 namespace strictmin::qc {
 

@@ -20,7 +20,7 @@
 
 #include "strictmin/measures/measures.h"
 #include "strictmin/problem/problem.h"
-#include "strictmin/solvers/qc/sparse_socp.h"
+#include "solvers/qc/sparse_socp.h"
 
 namespace strictmin::qc {
 
