@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include <tbb/task_group.h>
 
@@ -36,12 +35,6 @@ namespace {
 
 using namespace linf_detail;
 
-std::string format(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 // Step 3: the L2 map or the given positions, whichever misses the bounds less (then has the
 // lower maximum).

@@ -1,7 +1,6 @@
 #include "linf_phase1.h"
 
 #include <algorithm>
-#include <sstream>
 #include <vector>
 
 #include "strictmin/problem/parts.h"
@@ -11,12 +10,6 @@
 namespace strictmin::linf_detail {
 namespace {
 
-std::string format(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 }  // namespace
 

@@ -2,8 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace strictmin::linf_detail {
+
+std::string format(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
 
 socp::IpmSettings ipm_settings(const LinfOptions& o) {
   socp::IpmSettings s;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "strictmin/problem/problem.h"
@@ -20,6 +21,9 @@
 namespace strictmin::linf_detail {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A number for messages (6 significant digits).
+std::string format(double v);
 
 // The interior-point settings of the options.
 socp::IpmSettings ipm_settings(const LinfOptions& options);

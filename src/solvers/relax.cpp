@@ -57,6 +57,13 @@ void set_relax_status(Result& result, const RelaxOptions& options, bool moves_se
                      ") with vertices still moving more than the move tolerance";
 }
 
+bool record_sweep(Result& result, const RelaxOptions& options, const IterationRecord& record) {
+  result.history.push_back(record);
+  result.iterations = record.iteration;
+  if (options.progress) options.progress(record);
+  return record.largest_move < options.move_tolerance;
+}
+
 }  // namespace relax_detail
 
 bool RelaxOptions::is_valid(std::string* why) const {
@@ -109,13 +116,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     const double move = sweep_any(data, problem, X, dev, options.accept_tolerance, &record.max_distortion);
     record.largest_move = move;
     record.time_s = elapsed();
-    result.history.push_back(record);
-    result.iterations = s;
-    if (options.progress) options.progress(record);
-    if (move < options.move_tolerance) {
-      moves_settled = true;
-      break;
-    }
+    if ((moves_settled = record_sweep(result, options, record))) break;
   }
   result.positions = std::move(X);
   result.distortion = field_deviation(problem, result.positions);

@@ -157,13 +157,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
     record.max_distortion = field_deviation(p, X).maxCoeff();
     record.largest_move = move;
     record.time_s = elapsed();
-    result.history.push_back(record);
-    result.iterations = s;
-    if (options.progress) options.progress(record);
-    if (move < options.move_tolerance) {
-      moves_settled = true;
-      break;
-    }
+    if ((moves_settled = record_sweep(result, options, record))) break;
   }
   result.positions = std::move(X);
   result.distortion = field_deviation(p, result.positions);

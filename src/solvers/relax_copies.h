@@ -12,6 +12,10 @@ namespace strictmin::relax_detail {
 // running out of sweeps first is the cap).
 void set_relax_status(Result& result, const RelaxOptions& options, bool moves_settled);
 
+// Records sweep `record` (its iteration, maximum, largest_move and time set) in the result's
+// history and reports it; true when its largest move is below the move tolerance.
+bool record_sweep(Result& result, const RelaxOptions& options, const IterationRecord& record);
+
 Result relax_with_copies(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options);
 
 }  // namespace strictmin::relax_detail
