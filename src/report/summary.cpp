@@ -64,13 +64,23 @@ void add_conformal_summary(nlohmann::json& s, const SolverOptions& o, const Conf
   s["bisection_time_s"] = stats.bisection_time_s;
 }
 
-nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOptions& options,
-                              const DeformOutcome& d, const SummaryFiles& files) {
+namespace {
+
+// The keys every task with a mesh in and a map out starts with.
+nlohmann::json task_header(const char* task, const SummaryFiles& files) {
   nlohmann::json s;
-  s["task"] = "deform";
+  s["task"] = task;
   s["input"] = files.input;
   s["output"] = files.output;
   s["distortion_file"] = files.distortion_file;
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOptions& options,
+                              const DeformOutcome& d, const SummaryFiles& files) {
+  nlohmann::json s = task_header("deform", files);
   s["method"] = method_name(options.solver.method);
   s["measure"] = measure_name(options.measure);
   s["elements"] = mesh.num_elements();
@@ -90,11 +100,7 @@ nlohmann::json deform_summary(const Mesh& mesh, size_t handles, const DeformOpti
 
 nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, const ParamOutcome& p,
                              const SummaryFiles& files) {
-  nlohmann::json s;
-  s["task"] = "param";
-  s["input"] = files.input;
-  s["output"] = files.output;
-  s["distortion_file"] = files.distortion_file;
+  nlohmann::json s = task_header("param", files);
   s["method"] = options.init_only ? init_name(options.init) : method_name(options.solver.method);
   s["measure"] = measure_name(options.measure);
   s["init"] = init_name(options.init);
@@ -131,11 +137,7 @@ nlohmann::json singularity_list(const std::vector<Singularity>& s) {
 
 nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GParamOutcome& g,
                               const std::string& field, const SummaryFiles& files) {
-  nlohmann::json s;
-  s["task"] = "gparam";
-  s["input"] = files.input;
-  s["output"] = files.output;
-  s["distortion_file"] = files.distortion_file;
+  nlohmann::json s = task_header("gparam", files);
   s["method"] = method_name(o.solver.method);
   s["measure"] = measure_name(o.measure);
   s["field"] = field;
