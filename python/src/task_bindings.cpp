@@ -94,7 +94,8 @@ py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::Vect
   DeformOptions options;
   options.measure = measure_of(measure);
   const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
-  const int dim = mesh.element_type() == ElementType::Tetrahedron ? 3 : 2;
+  // Tets and triangle surfaces in 3D move in 3D; planar triangles in 2D (as the CLI).
+  const int dim = mesh.element_type() == ElementType::Tetrahedron || !mesh.is_planar() ? 3 : 2;
   const std::vector<Handle> handles = make_handles(handle_indices, handle_positions, mesh.num_vertices(), dim);
   wire_progress(o, callback_or_null(progress));
   options.solver = o.solver;

@@ -97,6 +97,10 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
         inexact = false;  // repeat at the solver's own tolerance
         continue;
       }
+      // The rise comes from the step's own tolerance: converged when that step met it,
+      // otherwise the step's shortfall is the outcome.
+      last_global = worse_status(last_global, r.status);
+      if (r.status != SolveStatus::Solved) last_global_message = r.message;
       stop.criterion_met = true;
       reason = "converged: the maximum stopped decreasing";
       break;
@@ -296,6 +300,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
       LocalGlobalOptions lo = o;
       lo.progress = nullptr;
       lo.l2_start = false;  // done once, before the first level
+      lo.no_flips_try_unconstrained = false;  // the whole run was tried unconstrained already
       return local_global(level_problem, X, inner, lo);
     };
     Result r = solve_direct(p, direct, solver.linf);

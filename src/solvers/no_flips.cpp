@@ -1,5 +1,9 @@
 #include "strictmin/solvers/no_flips.h"
 
+#include <string>
+
+#include "strictmin/measures/field_deviation.h"
+
 #include <Eigen/LU>
 
 namespace strictmin {
@@ -37,6 +41,16 @@ Eigen::MatrixXd cut_back_to_no_new_flips(const Problem& p, const Eigen::MatrixXd
   }
   if (fraction) *fraction = 0;
   return from;
+}
+
+void cut_back_result(const Problem& problem, const Eigen::MatrixXd& start, Result& result) {
+  if (!result.usable()) return;
+  double fraction = 1;
+  result.positions = cut_back_to_no_new_flips(problem, start, result.positions, &fraction);
+  if (fraction == 1) return;
+  result.distortion = field_deviation(problem, result.positions);
+  result.status = worse_status(result.status, SolveStatus::Stalled);
+  result.message += "; cut back to " + std::to_string(fraction) + " of the step from the start to add no flip";
 }
 
 }  // namespace strictmin

@@ -84,16 +84,6 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     throw InputError("relax: the initial map has " + std::to_string(initial.rows()) + " by " +
                      std::to_string(initial.cols()) + " entries, expected " + std::to_string(problem.num_vertices) +
                      " by " + std::to_string(problem.image_dim));
-  if (problem.has_equalities() && problem.copy_base.size() == static_cast<size_t>(problem.num_vertices) &&
-      problem.image_dim == 2) {
-    Eigen::MatrixXd X = initial;
-    for (int v = 0; v < problem.num_vertices; ++v)
-      if (problem.fixed[v]) X.row(v) = problem.positions.row(v);
-    return relax_with_copies(problem, X, options);
-  }
-  SweepData data;
-  build(problem, data);
-  data.no_flips = options.no_flips;
   Result result;
   Eigen::MatrixXd X = initial;
   for (int v = 0; v < problem.num_vertices; ++v)
@@ -106,6 +96,14 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     result.time_s = elapsed();
     return result;
   }
+  if (problem.has_equalities() && problem.copy_base.size() == static_cast<size_t>(problem.num_vertices) &&
+      problem.image_dim == 2) {
+    if (options.no_flips) throw InputError("relax: --no-flips is not available with seams (seamless problems) yet");
+    return relax_with_copies(problem, X, options);
+  }
+  SweepData data;
+  build(problem, data);
+  data.no_flips = options.no_flips;
   Deviations dev;
   bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {

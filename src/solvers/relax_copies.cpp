@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "strictmin/measures/field_deviation.h"
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/one_ring.h"
 #include "strictmin/solvers/vertex_colouring.h"
@@ -144,6 +145,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
   const int colours = static_cast<int>(g.colour_offsets.size()) - 1;
   bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {
+    check_interrupt();  // solvers/interrupt.h
     double move = 0;
     for (int c = 0; c < colours; ++c) {
       std::vector<double> moved(g.colour_offsets[c + 1] - g.colour_offsets[c], 0.0);

@@ -57,8 +57,7 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
     out.result = run_method(out.problem, solver);
     // One solve: cut it back along the segment from the start (fd is convex: the cut map's
     // maximum is at most the start's) when it adds flips.
-    if (options.no_flips && out.result.usable())
-      out.result.positions = cut_back_to_no_new_flips(out.problem, out.start, out.result.positions);
+    if (options.no_flips) cut_back_result(out.problem, out.start, out.result);
   }
   out.flips_added = flips_added(out.problem, out.start, out.result.positions);
   out.deformed = mesh;

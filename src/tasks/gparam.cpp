@@ -69,7 +69,7 @@ void solve(const GParamOptions& o, GParamOutcome& out) {
     LocalGlobalOptions lg = o.local_global;
     lg.local = LocalStep::Rotation;
     const Result start = solve_l2(out.problem);  // the field-guided map starts local-global
-    out.result = local_global(out.problem, start.positions, o.solver, lg);
+    out.result = start.ok() ? local_global(out.problem, start.positions, o.solver, lg) : start;
   }
   out.solve_time_s = seconds_from(t0);
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");

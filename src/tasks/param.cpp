@@ -58,8 +58,7 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
     out.result = run_method(p, solver);
     // One solve: cut back along the segment from the initial map when it adds flips (fd is
     // convex, so the cut map's maximum is at most the initial map's).
-    if (options.no_flips && out.result.usable())
-      out.result.positions = cut_back_to_no_new_flips(p, out.initial, out.result.positions);
+    if (options.no_flips) cut_back_result(p, out.initial, out.result);
   } else {
     out.result = local_global(p, out.initial, solver, lg);
   }

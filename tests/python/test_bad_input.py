@@ -132,7 +132,7 @@ def test_tasks(square):
     V, F, idx, pos = square
     surface = np.column_stack([V, V[:, 0] * V[:, 1]])
     # A 3D surface deforms in 3D: handles with 2 coordinates are refused.
-    with pytest.raises(ValueError, match="2 coordinates, the map is 3D"):
+    with pytest.raises(ValueError, match="2 coordinates, the mesh is 3D"):
         strictmin.deform(surface, F, idx, np.column_stack([pos]))
     with pytest.raises(ValueError, match="'relax' is not available"):
         strictmin.param(surface, F, measure="qc", method="relax")
@@ -146,3 +146,14 @@ def test_tasks(square):
         strictmin.distortion(V, F, V[:-1])
     with pytest.raises(ValueError, match="one length"):
         strictmin.compare(np.ones(3), np.ones(4))
+
+
+def test_surface_deforms_in_3d(square):
+    # A 3D triangle surface takes 3D handles (as the CLI): handles at their rest positions
+    # give the identity map, distortion 0.
+    V, F, idx, _ = square
+    surface = np.column_stack([V, V[:, 0] * V[:, 1]])
+    r = strictmin.deform(surface, F, idx, surface[idx], method="linf", measure="arap")
+    assert r.usable
+    assert r.positions.shape == surface.shape
+    assert r.distortion.max() < 1e-6

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/result.h"
 
 namespace strictmin {
 
@@ -18,5 +19,11 @@ int flips_added(const Problem& problem, const Eigen::MatrixXd& from, const Eigen
 // `from`, or `from` itself when none does. *fraction (if not null) gets t (0 for `from`).
 Eigen::MatrixXd cut_back_to_no_new_flips(const Problem& problem, const Eigen::MatrixXd& from,
                                          const Eigen::MatrixXd& to, double* fraction = nullptr);
+
+// A one-solve result cut back from `start` so that it adds no flip (--no-flips with fd): when
+// the cut changes the map, its distortion (field deviation) is recomputed, the message says
+// so, and a solved status becomes stalled: the cut map need not meet the solver's criterion.
+// lower_bound stays (it bounds every map).
+void cut_back_result(const Problem& problem, const Eigen::MatrixXd& start, Result& result);
 
 }  // namespace strictmin

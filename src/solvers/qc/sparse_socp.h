@@ -82,6 +82,8 @@ class SparseCholeskyCache {
  public:
   SparseCholeskyCache();
   ~SparseCholeskyCache();
+  SparseCholeskyCache(const SparseCholeskyCache&) = delete;  // owns impl_
+  SparseCholeskyCache& operator=(const SparseCholeskyCache&) = delete;
   struct Impl;
   Impl& impl() { return *impl_; }
 
