@@ -1,5 +1,7 @@
 #include "strictmin/measures/measures.h"
 
+#include "measures/closest_rotation3.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -65,6 +67,7 @@ Eigen::MatrixXd closest_rotation(const Eigen::MatrixXd& J) {
     R << cs, -sn, sn, cs;
     return R;
   }
+  if (J.rows() == 3 && J.cols() == 3) return closest_rotation3(Eigen::Matrix3d(J));
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
   Eigen::MatrixXd U = svd.matrixU();
   const Eigen::MatrixXd& V = svd.matrixV();

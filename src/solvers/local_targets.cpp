@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "strictmin/measures/measures.h"
+#include "measures/closest_rotation3.h"
 
 namespace strictmin {
 namespace {
@@ -37,7 +38,15 @@ Mat<2, 2> target_2x2(const Mat<2, 2>& J, LocalStep step) {
   return T;
 }
 
-// 3x3 and 3x2: U V^T from the SVD (proper rotation for square J: the smallest singular
+// 3x3: the closest rotation by the polar iteration (measures/closest_rotation3.h), times
+// s = <J, Q> / 3 clamped at 0 for a similarity.
+Mat<3, 3> target_3x3(const Mat<3, 3>& J, LocalStep step) {
+  Mat<3, 3> Q = closest_rotation3(J);
+  if (step == LocalStep::Similarity) Q *= std::max(0.0, (Q.transpose() * J).trace() / 3.0);
+  return Q;
+}
+
+// 3x2: U V^T from the SVD (proper rotation for square J: the smallest singular
 // direction flipped when det < 0), times s = <J, Q> / m clamped at 0 for a similarity.
 template <int n, int m>
 Mat<n, m> target_svd(const Mat<n, m>& J, LocalStep step) {
@@ -60,6 +69,7 @@ void pass(const Problem& p, const Eigen::MatrixXd& X, LocalStep step, Eigen::Vec
       const Mat<n, m> J = jacobian<n, m>(p, e, X);
       Mat<n, m> T;
       if constexpr (n == 2 && m == 2) T = target_2x2(J, step);
+      else if constexpr (n == 3 && m == 3) T = target_3x3(J, step);
       else T = target_svd<n, m>(J, step);
       d(e) = (J - T).norm();
       if (targets) targets->middleRows(e * n, n) = T;
