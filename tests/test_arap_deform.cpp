@@ -379,9 +379,11 @@ TEST(SurfaceDeformation, RelaxFromRestNoHigherThanLinf) {
   ASSERT_TRUE(relax.result.usable()) << relax.result.message;
   EXPECT_LE(relax.measured.stats.max, linf.measured.stats.max * (1 + 1e-4));
   const Eigen::MatrixXd rigid = (tube.V * Q.transpose()).rowwise() + Eigen::RowVector3d(0.5, -0.2, 0.1);
-  std::printf("from rest: ARAP max linf %.3g (%d steps), relax %.3g (%d steps); distance to the rigid map %.3g, %.3g\n",
+  std::printf("from rest: ARAP max linf %.3g (%d steps), relax %.3g (%d steps); distance to the rigid map %.3g, "
+              "%.3g\n",
               linf.measured.stats.max, linf.result.iterations, relax.measured.stats.max, relax.result.iterations,
-              (linf.result.positions - rigid).cwiseAbs().maxCoeff(), (relax.result.positions - rigid).cwiseAbs().maxCoeff());
+              (linf.result.positions - rigid).cwiseAbs().maxCoeff(),
+              (relax.result.positions - rigid).cwiseAbs().maxCoeff());
 }
 
 // Field deviation (no local step) on a surface through deform: relax from the linf map keeps
@@ -451,7 +453,8 @@ TEST(SurfaceDeformation, CommandLineRelaxOnHomer) {
     for (int v = 0; v < mesh.num_vertices(); ++v) {
       const Eigen::Vector3d x = mesh.V.row(v).transpose();
       if (y(v) < lo + 0.03 * h) handles.push_back({v, x});
-      else if (y(v) > hi - 0.03 * h) handles.push_back({v, turn * (x - centre) + centre + Eigen::Vector3d(0.1 * h, 0, 0)});
+      else if (y(v) > hi - 0.03 * h)
+        handles.push_back({v, turn * (x - centre) + centre + Eigen::Vector3d(0.1 * h, 0, 0)});
     }
     for (const Handle& hd : handles) out << hd.vertex << " " << hd.position.transpose() << "\n";
   }

@@ -80,8 +80,8 @@ struct Accumulator {
 // Inlined into each sweep (two sweeps, 3x3 and 3x2, call the d = 3 copy; left to itself the
 // compiler then keeps it out of line, 0.4% more instructions on tet sweeps).
 template <int d>
-[[gnu::always_inline]] inline bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec<d>& q, double value,
-                 double current, double tolerance) {
+[[gnu::always_inline]] inline bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n,
+                                               const Vec<d>& q, double value, double current, double tolerance) {
   const double top = std::sqrt(current), tau = tolerance * top;
   // value = the new ring maximum, squared: the top level itself went down (the common case).
   if (value < (top - tau) * (top - tau)) return true;
@@ -184,7 +184,7 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
         s.guesses[idx].store(support, std::memory_order_relaxed);
         Vec<d> step = sol.q;
         double value = sol.value;
-        if constexpr (n == m) {  // build() refuses no_flips for rectangular Jacobians
+        if constexpr (n == m) {  // no_flips is refused for rectangular Jacobians (check_no_flips)
           if (s.no_flips) {
             const double t = kernel_step<d>(s, p, dev, first, count, step);
             if (t < 1) {
