@@ -90,7 +90,8 @@ void add_deform_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "deform",
       "Deform a planar triangle mesh, a triangle surface in 3D or a tet mesh so that the handle vertices reach their targets, with the least "
-      "distortion ||J - I|| (field deviation) in the chosen norm.");
+      "distortion ||J - I|| (field deviation) in the chosen norm. Every method works on all three (a 3D surface: each "
+      "triangle in its own frame, 3x2 Jacobians); --no-flips is for planar and tet meshes, qc and iso for planar meshes.");
   cmd->add_option("mesh", args->mesh, "Input mesh (.obj/.off triangles, planar or a 3D surface; .mesh tetrahedra)");
   cmd->add_option("--example", args->example, "Use a built-in example instead of a mesh: square, bar, tetbar");
   cmd->add_option("--handles", args->handles,

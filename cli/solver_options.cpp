@@ -73,7 +73,8 @@ void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
       ->check(CLI::Range(0, 50));
   cmd.add_flag("--no-flips", a.no_flips,
                 "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
-                "kept in their rings' kernels); the summary's flips_added counts them");
+                "kept in their rings' kernels); the summary's flips_added counts them. Refused on a triangle surface "
+                "in 3D (a 3x2 Jacobian has no orientation)");
 }
 
 void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o) {

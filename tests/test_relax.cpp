@@ -11,12 +11,15 @@
 #include <fstream>
 #include <string>
 #include <numeric>
+#include <random>
 #include <vector>
 
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/mesh/surface_generators.h"
+#include "strictmin/problem/surface_deformation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/one_ring.h"
 #include "strictmin/solvers/relax.h"
@@ -47,6 +50,24 @@ Problem tet_bar_problem() {
     const Eigen::Vector3d x = mesh.V.row(v).transpose();
     if (x.x() == 0.0) handles.push_back({v, x});
     if (x.x() == 2.0) handles.push_back({v, Eigen::Vector3d(axis + turn * (x - axis) + Eigen::Vector3d(0.2, 0, 0))});
+  }
+  p.fix(handles);
+  return p;
+}
+
+// A triangle surface in 3D (3 by 2 Jacobians, each triangle in its own frame): a cylinder
+// patch (radius 1, 2 radians around the z axis, height 2; 16 by 8 squares, 256 triangles)
+// with its bottom row fixed and its top row turned by 0.5 radians about the axis and lifted
+// by 0.2, a twist.
+Problem surface_problem() {
+  const Mesh patch = make_cylinder_patch(16, 8, 1.0, 2.0, 2.0);
+  Problem p = make_surface_deformation_problem(patch);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  std::vector<Handle> handles;
+  for (int v = 0; v < patch.num_vertices(); ++v) {
+    const Eigen::Vector3d x = patch.V.row(v).transpose();
+    if (x.z() < 1e-9) handles.push_back({v, x});
+    if (x.z() > 2 - 1e-9) handles.push_back({v, Eigen::Vector3d(turn * x + Eigen::Vector3d(0, 0, 0.2))});
   }
   p.fix(handles);
   return p;
@@ -127,7 +148,7 @@ void expect_valid_colouring(const Problem& p, const VertexColouring& c) {
 }
 
 TEST(Relax, ColouringIsValid) {
-  for (const Problem& p : {figure2_problem(), tet_bar_problem()}) {
+  for (const Problem& p : {figure2_problem(), tet_bar_problem(), surface_problem()}) {
     const RelaxSweeper sweeper(p);
     expect_valid_colouring(p, sweeper.colouring());
     EXPECT_EQ(sweeper.num_colours(), sweeper.colouring().num_colours);
@@ -170,6 +191,7 @@ void sweeps_never_worsen(const Problem& p, int sweeps) {
 
 TEST(Relax, SweepsNeverWorsenTheStrictOrderFigure2) { sweeps_never_worsen(figure2_problem(), 100); }
 TEST(Relax, SweepsNeverWorsenTheStrictOrderTetBar) { sweeps_never_worsen(tet_bar_problem(), 40); }
+TEST(Relax, SweepsNeverWorsenTheStrictOrderSurface) { sweeps_never_worsen(surface_problem(), 40); }
 
 // relax() from the L2 map: the maximum drops well below L2's, the history is consistent.
 void lowers_the_maximum(const Problem& p, double factor) {
@@ -197,30 +219,33 @@ void lowers_the_maximum(const Problem& p, double factor) {
   }
   expect_fixed_in_place(p, r.positions);
   const double before = l2.distortion.maxCoeff(), after = r.distortion.maxCoeff();
-  std::printf("[ %dD ] max field deviation: L2 %.4f, relaxed (50 sweeps) %.4f\n", p.domain_dim, before, after);
+  std::printf("[ %d by %d ] max field deviation: L2 %.4f, relaxed (50 sweeps) %.4f\n", p.image_dim, p.domain_dim, before,
+              after);
   EXPECT_LT(after, factor * before);
 }
 
 TEST(Relax, LowersTheL2MaximumFigure2) { lowers_the_maximum(figure2_problem(), 0.75); }
 TEST(Relax, LowersTheL2MaximumTetBar) { lowers_the_maximum(tet_bar_problem(), 0.9); }
+TEST(Relax, LowersTheL2MaximumSurface) { lowers_the_maximum(surface_problem(), 0.9); }
 
 // The ring of v as the paper states it (docs/maths.md), built independently of the sweeper from
-// Problem::jacobian: D_T(q)^2 = a ||q - c||^2 + b in absolute coordinates.
-template <int d>
-std::vector<RingTerm<d>> ring_terms(const Problem& p, const Eigen::MatrixXd& X, int v) {
-  std::vector<RingTerm<d>> terms;
+// Problem::jacobian: D_T(q)^2 = a ||q - c||^2 + b in absolute coordinates. Jacobians n by m
+// (3 by 2 on a surface in 3D).
+template <int n, int m = n>
+std::vector<RingTerm<n>> ring_terms(const Problem& p, const Eigen::MatrixXd& X, int v) {
+  std::vector<RingTerm<n>> terms;
   for (int e = 0; e < p.num_elements(); ++e)
     for (int j = 0; j < p.corners(); ++j) {
       if (p.elements(e, j) != v) continue;
       const Eigen::VectorXd g = p.gradients.row(e * p.corners() + j).transpose();
-      const Eigen::Matrix<double, d, d> M = p.jacobian(e, X) - p.target(e) - X.row(v).transpose() * g.transpose();
-      const Eigen::Matrix<double, d, 1> gd = g;
-      terms.push_back(ring_term<d>(M, gd, 1.0 / gd.squaredNorm()));
+      const Eigen::Matrix<double, n, m> M = p.jacobian(e, X) - p.target(e) - X.row(v).transpose() * g.transpose();
+      const Eigen::Matrix<double, m, 1> gd = g;
+      terms.push_back(ring_term<n, m>(M, gd, 1.0 / gd.squaredNorm()));
     }
   return terms;
 }
 
-template <int d>
+template <int d, int m = d>
 void converges_to_ring_optima(const Problem& p, int max_sweeps) {
   const Result l2 = solve_l2(p);
   RelaxOptions options;
@@ -229,7 +254,7 @@ void converges_to_ring_optima(const Problem& p, int max_sweeps) {
   options.accept_tolerance = 0;  // the plain rule: any decrease of a ring maximum is taken
   const Result r = relax(p, l2.positions, options);
   ASSERT_LT(r.iterations, max_sweeps) << "did not converge";
-  std::printf("[ %dD ] converged in %d sweeps, max %.6f\n", d, r.iterations, r.distortion.maxCoeff());
+  std::printf("[ %d by %d ] converged in %d sweeps, max %.6f\n", d, m, r.iterations, r.distortion.maxCoeff());
   Eigen::MatrixXd X = r.positions;
   const double move = RelaxSweeper(p, 0.0).sweep(p, X);
   // Positions are settled only to about sqrt(machine epsilon) (1.5e-8) times the mesh scale:
@@ -241,7 +266,7 @@ void converges_to_ring_optima(const Problem& p, int max_sweeps) {
   const Eigen::VectorXd D = field_deviation(p, r.positions);
   for (int v = 0; v < p.num_vertices; ++v) {
     if (p.fixed[v]) continue;
-    const auto terms = ring_terms<d>(p, r.positions, v);
+    const auto terms = ring_terms<d, m>(p, r.positions, v);
     double current = 0;
     for (int e = 0; e < p.num_elements(); ++e)
       for (int j = 0; j < p.corners(); ++j)
@@ -253,6 +278,9 @@ void converges_to_ring_optima(const Problem& p, int max_sweeps) {
 
 TEST(Relax, ConvergedRingsAreAtTheirOwnOptimumFigure2) { converges_to_ring_optima<2>(figure2_problem(), 20000); }
 TEST(Relax, ConvergedRingsAreAtTheirOwnOptimumTetBar) { converges_to_ring_optima<3>(tet_bar_problem(), 20000); }
+TEST(Relax, ConvergedRingsAreAtTheirOwnOptimumSurface) {
+  converges_to_ring_optima<3, 2>(surface_problem(), 20000);
+}
 
 
 // Planar meshes from ../shared/data with handles: gecko with its own constraints; woody and
@@ -318,6 +346,7 @@ void less_distorting_than_linf(const Problem& p, const std::string& name) {
 
 TEST(Relax, LessDistortingThanLinfFigure2) { less_distorting_than_linf(figure2_problem(), "square"); }
 TEST(Relax, LessDistortingThanLinfTetBar) { less_distorting_than_linf(tet_bar_problem(), "tet bar"); }
+TEST(Relax, LessDistortingThanLinfSurface) { less_distorting_than_linf(surface_problem(), "surface"); }
 TEST(Relax, LessDistortingThanLinfDataMeshes) {
   for (const std::string name : {"gecko", "woody", "bump_domain"}) {
     const Problem p = data_problem(name);
@@ -362,7 +391,7 @@ TEST(Relax, RingOrderWithTolerance) {
 // Vertices of one colour share no element, so their moves are independent: one thread and
 // several give the same map, bit for bit.
 TEST(Relax, OneThreadAndSeveralGiveTheSameMap) {
-  for (const Problem& p : {figure2_problem(), tet_bar_problem()}) {
+  for (const Problem& p : {figure2_problem(), tet_bar_problem(), surface_problem()}) {
     const Eigen::MatrixXd start = solve_l2(p).positions;
     RelaxOptions options;
     options.sweeps = 15;
@@ -436,6 +465,207 @@ TEST(Relax, RejectsBadInput) {
   bad(p.num_vertices / 2 + 3, 0) = std::nan("");
   const Result r = relax(p, bad);
   EXPECT_EQ(r.status, SolveStatus::NumericalError);
+}
+
+// Surfaces in 3D: a rigid-looking but perturbed map of the cap with every target turned by
+// its own random rotation, so that every ring term has a > 0, b > 0 and a centre off zero.
+struct SurfaceRing {
+  Problem p;
+  Eigen::MatrixXd X;
+};
+
+SurfaceRing perturbed_surface(unsigned seed) {
+  SurfaceRing s{make_surface_deformation_problem(make_spherical_cap(5, 7)), {}};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  s.X = s.p.positions;
+  for (int v = 0; v < s.X.rows(); ++v)
+    for (int k = 0; k < 3; ++k) s.X(v, k) += 0.15 * u(rng);
+  for (int e = 0; e < s.p.num_elements(); ++e) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    s.p.set_target(e, Eigen::AngleAxisd(0.8 * u(rng), axis).toRotationMatrix() * s.p.target(e));
+  }
+  return s;
+}
+
+// D_T(X with vertex v moved by q)^2, straight from the Jacobian (Problem::jacobian).
+double moved_deviation(const Problem& p, Eigen::MatrixXd X, int e, int v, const Eigen::Vector3d& q) {
+  X.row(v) += q.transpose();
+  return (p.jacobian(e, X) - p.target(e)).squaredNorm();
+}
+
+// The ring term of a 3 by 2 Jacobian in displacement coordinates (as the sweep builds it:
+// M = J_T - R_T now) agrees with D_T^2 computed from the moved map's Jacobian, at random q.
+TEST(RelaxSurface, RingTermIsTheMovedDeviation) {
+  const SurfaceRing s = perturbed_surface(11);
+  const Problem& p = s.p;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int checked = 0;
+  double worst = 0;
+  for (int e = 0; e < p.num_elements(); ++e)
+    for (int j = 0; j < 3; ++j) {
+      const int v = p.elements(e, j);
+      const Eigen::Matrix<double, 3, 2> M = p.jacobian(e, s.X) - p.target(e);
+      const Eigen::Vector2d g = p.gradients.row(e * 3 + j).transpose();
+      const RingTerm<3> t = ring_term<3, 2>(M, g, 1.0 / g.squaredNorm());
+      EXPECT_NEAR(t.a, g.squaredNorm(), 1e-15 * t.a);
+      EXPECT_GE(t.b, 0.0);
+      for (int k = 0; k < 20; ++k) {
+        const Eigen::Vector3d q = std::pow(10.0, 2 * u(rng)) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const double direct = moved_deviation(p, s.X, e, v, q);
+        const double term = t.a * (q - t.centre).squaredNorm() + t.b;
+        const double scale = std::max(1.0, direct);
+        EXPECT_NEAR(term, direct, 1e-12 * scale) << "element " << e << " corner " << j;
+        worst = std::max(worst, std::abs(term - direct) / scale);
+        ++checked;
+      }
+      // At q = 0 the term is the current deviation; at its centre, the least D_T^2 = b.
+      EXPECT_NEAR(t.a * t.centre.squaredNorm() + t.b, M.squaredNorm(), 1e-13 * std::max(1.0, M.squaredNorm()));
+      EXPECT_NEAR(moved_deviation(p, s.X, e, v, t.centre), t.b, 1e-13 * std::max(1.0, M.squaredNorm()));
+    }
+  std::printf("[ 3 by 2 ] %d terms at random q: worst relative difference %.1e\n", checked, worst);
+}
+
+// A generic minimizer of a maximum of smooth convex functions f_k (values and gradients from
+// `eval`, each with Hessian h_k I): Newton's method on the log-sum-exp smoothing
+// mu log sum exp(f_k / mu), which is within mu log(#k) of the maximum, with mu lowered from
+// 1 to 1e-13 and a backtracking line search.
+template <class Eval>
+Eigen::Vector3d smoothed_max_minimizer(const Eval& eval, int count, Eigen::Vector3d q) {
+  std::vector<double> f(count), h(count), w(count);
+  std::vector<Eigen::Vector3d> grad(count);
+  const auto smoothed = [&](const Eigen::Vector3d& x, double mu) {
+    eval(x, f.data(), grad.data(), h.data());
+    const double top = *std::max_element(f.begin(), f.end());
+    double sum = 0;
+    for (int k = 0; k < count; ++k) sum += std::exp((f[k] - top) / mu);
+    return top + mu * std::log(sum);
+  };
+  for (double mu = 1; mu >= 1e-13; mu *= 0.1)
+    for (int it = 0; it < 100; ++it) {
+      const double value = smoothed(q, mu);
+      const double top = *std::max_element(f.begin(), f.end());
+      double sum = 0;
+      for (int k = 0; k < count; ++k) sum += (w[k] = std::exp((f[k] - top) / mu));
+      Eigen::Vector3d g = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+      for (int k = 0; k < count; ++k) {
+        w[k] /= sum;
+        g += w[k] * grad[k];
+        H += w[k] * (h[k] * Eigen::Matrix3d::Identity() + grad[k] * grad[k].transpose() / mu);
+      }
+      H -= g * g.transpose() / mu;
+      const Eigen::Vector3d step = -H.ldlt().solve(g);
+      if (!(g.dot(-step) > 1e-30)) break;  // converged for this mu
+      double t = 1;
+      while (t > 1e-20 && !(smoothed(q + t * step, mu) <= value + 1e-4 * t * g.dot(step))) t *= 0.5;
+      if (t <= 1e-20) break;
+      q += t * step;
+    }
+  return q;
+}
+
+// One surface 1-ring (vertices of the perturbed cap): the exact 1-ring solution against the
+// ring maximum evaluated from the Jacobians (1) on a grid of 81^3 points over the box of the
+// terms' centres, (2) on grids around the solution down to 1e-6 (a convex function: no point
+// near it lower means none anywhere), and (3) a generic minimizer (smoothed_max_minimizer)
+// from the vertex's current place, which reaches the same point and value.
+TEST(RelaxSurface, OneRingOptimumAgainstBruteForce) {
+  const SurfaceRing s = perturbed_surface(21);
+  const Problem& p = s.p;
+  // The pole (7 triangles), then interior vertices (not on the rim) with 6 or more triangles.
+  std::vector<int> vertices = {0};
+  for (int v = 1; v < p.num_vertices - 7 && vertices.size() < 4; v += 3) {
+    int count = 0;
+    for (int e = 0; e < p.num_elements(); ++e) count += (p.elements.row(e).array() == v).any();
+    if (count >= 6) vertices.push_back(v);
+  }
+  ASSERT_EQ(vertices.size(), 4u);
+  for (int v : vertices) {
+    std::vector<int> ring, corner;
+    for (int e = 0; e < p.num_elements(); ++e)
+      for (int j = 0; j < 3; ++j)
+        if (p.elements(e, j) == v) ring.push_back(e), corner.push_back(j);
+    const int n = static_cast<int>(ring.size());
+    // The ring maximum at a move q: D_T = M_T + q g^T with M_T and g from the Jacobian of
+    // the current map (checked against the moved map's Jacobian at the solution below).
+    std::vector<Eigen::Matrix<double, 3, 2>> M(n);
+    std::vector<Eigen::Vector2d> grad(n);
+    for (int k = 0; k < n; ++k) {
+      M[k] = p.jacobian(ring[k], s.X) - p.target(ring[k]);
+      grad[k] = p.gradients.row(ring[k] * 3 + corner[k]).transpose();
+    }
+    const auto f = [&](const Eigen::Vector3d& q) {
+      double worst = 0;
+      for (int k = 0; k < n; ++k) worst = std::max(worst, (M[k] + q * grad[k].transpose()).squaredNorm());
+      return worst;
+    };
+    // The terms as the sweep builds them (displacement coordinates).
+    std::vector<RingTerm<3>> terms;
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector2d g = p.gradients.row(ring[k] * 3 + corner[k]).transpose();
+      terms.push_back(ring_term<3, 2>(Eigen::Matrix<double, 3, 2>(p.jacobian(ring[k], s.X) - p.target(ring[k])), g,
+                                      1.0 / g.squaredNorm()));
+    }
+    const RingSolution<3> sol = solve_one_ring<3>(terms.data(), n);
+    const double value = sol.value;
+    EXPECT_NEAR(f(sol.q), value, 1e-12 * value) << v;
+    double moved = 0;
+    for (int e : ring) moved = std::max(moved, moved_deviation(p, s.X, e, v, sol.q));
+    EXPECT_NEAR(moved, value, 1e-12 * value) << v;
+    EXPECT_LT(value, f(Eigen::Vector3d::Zero())) << "the vertex can improve its ring: " << v;
+    // (1) The box of the centres.
+    Eigen::Vector3d lo = terms[0].centre, hi = terms[0].centre;
+    for (const RingTerm<3>& t : terms) lo = lo.cwiseMin(t.centre), hi = hi.cwiseMax(t.centre);
+    double grid_min = INFINITY;
+    const int N = 80;
+    for (int i = 0; i <= N; ++i)
+      for (int j = 0; j <= N; ++j)
+        for (int k = 0; k <= N; ++k)
+          grid_min = std::min(grid_min, f(lo + (hi - lo).cwiseProduct(Eigen::Vector3d(i, j, k) / N)));
+    EXPECT_GE(grid_min, value * (1 - 1e-12)) << v;
+    EXPECT_LE(grid_min, value * (1 + 1e-2)) << v;
+    // (2) Around the solution, at every scale.
+    for (double h : {1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6})
+      for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j)
+          for (int k = -4; k <= 4; ++k)
+            EXPECT_GE(f(sol.q + h / 4 * Eigen::Vector3d(i, j, k)), value * (1 - 1e-12)) << v << " h " << h;
+    // (3) A generic minimizer: D_T^2 = ||M + q g^T||^2 has gradient 2 (M + q g^T) g and
+    // Hessian 2 |g|^2 I.
+    const auto eval = [&](const Eigen::Vector3d& q, double* fk, Eigen::Vector3d* gk, double* hk) {
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Matrix<double, 3, 2> D = M[k] + q * grad[k].transpose();
+        fk[k] = D.squaredNorm();
+        gk[k] = 2 * D * grad[k];
+        hk[k] = 2 * grad[k].squaredNorm();
+      }
+    };
+    const Eigen::Vector3d generic = smoothed_max_minimizer(eval, n, Eigen::Vector3d::Zero());
+    EXPECT_GE(f(generic), value * (1 - 1e-12)) << v;
+    EXPECT_LE(f(generic), value * (1 + 1e-9)) << v;
+    EXPECT_LT((generic - sol.q).norm(), 1e-5) << v;
+    std::printf("[ vertex %d, %d triangles ] 1-ring optimum %.12f (%d active); 81^3 grid %.12f; generic %.12f, "
+                "|q - q_generic| %.1e\n",
+                v, n, value, sol.active, grid_min, f(generic), (generic - sol.q).norm());
+  }
+}
+
+// On a surface in 3D, no_flips has no meaning (a 3 by 2 Jacobian has no sign of
+// orientation): refused, naming the reason.
+TEST(RelaxSurface, NoFlipsIsRefused) {
+  const Problem p = surface_problem();
+  RelaxOptions o;
+  o.no_flips = true;
+  try {
+    relax(p, p.positions, o);
+    ADD_FAILURE() << "no_flips on a 3D surface was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("3 by 2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(RelaxSweeper(p, 1e-4, true), InputError);
+  EXPECT_NO_THROW(RelaxSweeper(p, 1e-4, false));
 }
 
 }  // namespace

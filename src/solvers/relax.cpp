@@ -20,6 +20,7 @@ struct RelaxSweeper::Impl : SweepData {};
 
 RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_flips)
     : accept_tolerance_(accept_tolerance) {
+  check_no_flips(p, no_flips);
   auto impl = std::make_shared<Impl>();
   build(p, *impl);
   impl->no_flips = no_flips;
@@ -101,6 +102,7 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     if (options.no_flips) throw InputError("relax: --no-flips is not available with seams (seamless problems) yet");
     return relax_with_copies(problem, X, options);
   }
+  check_no_flips(problem, options.no_flips);
   SweepData data;
   build(problem, data);
   data.no_flips = options.no_flips;

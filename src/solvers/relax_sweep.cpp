@@ -1,7 +1,9 @@
 // One relaxation sweep (paper Algorithm 3, Section 5.3; docs/maths.md section 2, "One vertex
 // at a time"): each free vertex v solves min_q max_{T in ring(v)} ||J_T - R_T||^2 with
 // every other vertex fixed and moves only if that lowers its ring's maximum; vertices of
-// one colour share no element, so they move in parallel.
+// one colour share no element, so they move in parallel. Jacobians are n by m (image by
+// domain dimension): 2 by 2 (planar), 3 by 3 (tets) or 3 by 2 (triangles of a 3D surface,
+// each in its own frame); the vertex moves in R^n either way.
 #include "relax_sweep.h"
 
 #include <Eigen/LU>
@@ -31,25 +33,25 @@ inline uint32_t pack_entry(int element, int corner, bool last) {
 
 template <int d>
 using Vec = Eigen::Matrix<double, d, 1>;
-template <int d>
-using Mat = Eigen::Matrix<double, d, d>;
+template <int n, int m>
+using Mat = Eigen::Matrix<double, n, m>;
 
-template <int d>
+template <int n, int m>
 void compute_deviations(const SweepData& s, const Problem& p, const Eigen::MatrixXd& Xm, Deviations& dev) {
-  const int E = static_cast<int>(s.corners.size()) / (d + 1);
-  dev.M.resize(static_cast<size_t>(E) * d * d);
+  const int E = static_cast<int>(s.corners.size()) / (m + 1);
+  dev.M.resize(static_cast<size_t>(E) * n * m);
   const double* X = Xm.data();
   const Eigen::Index xrows = Xm.rows(), rrows = p.targets.rows();
   const double* R = p.targets.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, E, 2048), [&](const tbb::blocked_range<int>& range) {
     for (int e = range.begin(); e != range.end(); ++e) {
-      Eigen::Map<Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
-      for (int col = 0; col < d; ++col)
-        for (int r = 0; r < d; ++r) M(r, col) = -R[col * rrows + e * d + r];
-      for (int i = 0; i < d + 1; ++i) {
-        const Eigen::Map<const Vec<d>> g(&s.gradients[(e * (d + 1) + i) * (d + 1)]);
-        const int v = s.corners[e * (d + 1) + i];
-        for (int r = 0; r < d; ++r) M.row(r) += X[r * xrows + v] * g.transpose();
+      Eigen::Map<Mat<n, m>> M(&dev.M[static_cast<size_t>(e) * n * m]);
+      for (int col = 0; col < m; ++col)
+        for (int r = 0; r < n; ++r) M(r, col) = -R[col * rrows + e * n + r];
+      for (int i = 0; i < m + 1; ++i) {
+        const Eigen::Map<const Vec<m>> g(&s.gradients[(e * (m + 1) + i) * (m + 1)]);
+        const int v = s.corners[e * (m + 1) + i];
+        for (int r = 0; r < n; ++r) M.row(r) += X[r * xrows + v] * g.transpose();
       }
     }
   });
@@ -75,9 +77,11 @@ struct Accumulator {
 // maximum) counted as equal. Without the tolerance, a move that lowers the maximum by a
 // rounding-sized amount while raising the ring's other elements up to it would count as
 // progress, and sweeps would creep every element up to the top level.
+// Inlined into each sweep (two sweeps, 3x3 and 3x2, call the d = 3 copy; left to itself the
+// compiler then keeps it out of line, 0.4% more instructions on tet sweeps).
 template <int d>
-bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n, const Vec<d>& q, double value,
-                 double current, double tolerance) {
+[[gnu::always_inline]] inline bool accept_move(const SweepData& s, Scratch<d>& sc, int first, int n,
+                                               const Vec<d>& q, double value, double current, double tolerance) {
   const double top = std::sqrt(current), tau = tolerance * top;
   // value = the new ring maximum, squared: the top level itself went down (the common case).
   if (value < (top - tau) * (top - tau)) return true;
@@ -110,7 +114,7 @@ double kernel_step(const SweepData& s, const Problem& p, const Deviations& dev, 
   for (int k = 0; k < n; ++k) {
     const uint32_t entry = s.ring[first + k];
     const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
-    Mat<d> J = Eigen::Map<const Mat<d>>(&dev.M[static_cast<size_t>(e) * d * d]);
+    Mat<d, d> J = Eigen::Map<const Mat<d, d>>(&dev.M[static_cast<size_t>(e) * d * d]);
     for (int col = 0; col < d; ++col)
       for (int r = 0; r < d; ++r) J(r, col) += R[col * rrows + e * d + r];
     const double det = J.determinant();
@@ -122,10 +126,13 @@ double kernel_step(const SweepData& s, const Problem& p, const Deviations& dev, 
   return t;
 }
 
-template <int d>
+// Image dimension n (the vertex moves in R^n), domain dimension m (m + 1 corners).
+template <int n, int m>
 double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Deviations& dev, double accept_tolerance,
                  double* max_distortion) {
-  if (dev.age < 0) compute_deviations<d>(s, p, Xm, dev);
+  constexpr int d = n;  // the ring problem's dimension
+  constexpr int nm = n * m;
+  if (dev.age < 0) compute_deviations<n, m>(s, p, Xm, dev);
   double* X = Xm.data();
   const Eigen::Index xrows = Xm.rows();
 
@@ -142,23 +149,23 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
 
   Accumulator total;
   for (int e : s.closed)
-    total.top = std::max(total.top, Eigen::Map<const Mat<d>>(&dev.M[static_cast<size_t>(e) * d * d]).squaredNorm());
+    total.top = std::max(total.top, Eigen::Map<const Mat<n, m>>(&dev.M[static_cast<size_t>(e) * nm]).squaredNorm());
 
   const auto body = [&](const tbb::blocked_range<int>& range, Accumulator acc) {
     Scratch<d>& sc = scratch.local();
     for (int idx = range.begin(); idx != range.end(); ++idx) {
       const int v = s.colouring.order[idx];
-      const int first = s.ring_start[idx], n = s.ring_start[idx + 1] - first;
+      const int first = s.ring_start[idx], count = s.ring_start[idx + 1] - first;
       // Ring terms in displacement coordinates q = X_v(new) - X_v: J_T - R_T = M + q g^T
       // with M the current deviation, so D_T^2 = a ||q - c||^2 + b (docs/maths.md).
       double current = 0;
-      for (int k = 0; k < n; ++k) {
+      for (int k = 0; k < count; ++k) {
         const uint32_t entry = s.ring[first + k];
         const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
-        const Eigen::Map<const Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
-        const double* G = &s.gradients[(e * (d + 1) + j) * (d + 1)];
-        const Eigen::Map<const Vec<d>> g(G);
-        sc.terms[k] = ring_term<d>(M, g, G[d]);
+        const Eigen::Map<const Mat<n, m>> M(&dev.M[static_cast<size_t>(e) * nm]);
+        const double* G = &s.gradients[(e * (m + 1) + j) * (m + 1)];
+        const Eigen::Map<const Vec<m>> g(G);
+        sc.terms[k] = ring_term<n, m>(M, g, G[m]);
         sc.current[k] = M.squaredNorm();
         current = std::max(current, sc.current[k]);
       }
@@ -169,37 +176,39 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
         const uint32_t packed = s.guesses[idx].load(std::memory_order_relaxed);
         for (int i = 0; i < d + 1 && ((packed >> (8 * i)) & 0xff) != 0xff; ++i)
           guess[guess_size++] = static_cast<int>((packed >> (8 * i)) & 0xff);
-        const RingSolution<d> sol = solve_one_ring<d>(sc.terms.data(), n, guess, guess_size);
+        const RingSolution<d> sol = solve_one_ring<d>(sc.terms.data(), count, guess, guess_size);
         uint32_t support = kNoGuess;
-        if (n < 0xff)
+        if (count < 0xff)
           for (int i = 0; i < sol.active; ++i)
             support = (support & ~(0xffu << (8 * i))) | static_cast<uint32_t>(sol.support[i]) << (8 * i);
         s.guesses[idx].store(support, std::memory_order_relaxed);
         Vec<d> step = sol.q;
         double value = sol.value;
-        if (s.no_flips) {
-          const double t = kernel_step<d>(s, p, dev, first, n, step);
-          if (t < 1) {
-            step *= t;
-            value = 0;
-            for (int k = 0; k < n; ++k) value = std::max(value, term_value<d>(sc.terms[k], step));
+        if constexpr (n == m) {  // no_flips is refused for rectangular Jacobians (check_no_flips)
+          if (s.no_flips) {
+            const double t = kernel_step<d>(s, p, dev, first, count, step);
+            if (t < 1) {
+              step *= t;
+              value = 0;
+              for (int k = 0; k < count; ++k) value = std::max(value, term_value<d>(sc.terms[k], step));
+            }
           }
         }
         if (value < current * (1 - kAcceptRelative) &&
-            accept_move<d>(s, sc, first, n, step, value, current, accept_tolerance)) {
+            accept_move<d>(s, sc, first, count, step, value, current, accept_tolerance)) {
           moved = true;
           q = step;
           for (int r = 0; r < d; ++r) X[r * xrows + v] += q(r);
           acc.move = std::max(acc.move, q.norm());
-          for (int k = 0; k < n; ++k) {  // the ring's deviations follow the move
+          for (int k = 0; k < count; ++k) {  // the ring's deviations follow the move
             const uint32_t entry = s.ring[first + k];
             const int e = static_cast<int>(entry >> 3), j = (entry >> 1) & 3;
-            Eigen::Map<Mat<d>> M(&dev.M[static_cast<size_t>(e) * d * d]);
-            M.noalias() += q * Eigen::Map<const Vec<d>>(&s.gradients[(e * (d + 1) + j) * (d + 1)]).transpose();
+            Eigen::Map<Mat<n, m>> M(&dev.M[static_cast<size_t>(e) * nm]);
+            M.noalias() += q * Eigen::Map<const Vec<m>>(&s.gradients[(e * (m + 1) + j) * (m + 1)]).transpose();
           }
         }
       }
-      for (int k = 0; k < n; ++k) {
+      for (int k = 0; k < count; ++k) {
         if (!(s.ring[first + k] & 1u)) continue;
         const RingTerm<d>& t = sc.terms[k];
         acc.top = std::max(acc.top, moved ? t.a * (q - t.centre).squaredNorm() + t.b : sc.current[k]);
@@ -223,37 +232,45 @@ double sweep_dim(const SweepData& s, const Problem& p, Eigen::MatrixXd& Xm, Devi
 
 double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Deviations& dev, double accept_tolerance,
                  double* max_distortion) {
-  return s.dim == 2 ? sweep_dim<2>(s, p, X, dev, accept_tolerance, max_distortion)
-                    : sweep_dim<3>(s, p, X, dev, accept_tolerance, max_distortion);
+  if (s.dim == 2) return sweep_dim<2, 2>(s, p, X, dev, accept_tolerance, max_distortion);
+  if (s.domain_dim == 3) return sweep_dim<3, 3>(s, p, X, dev, accept_tolerance, max_distortion);
+  return sweep_dim<3, 2>(s, p, X, dev, accept_tolerance, max_distortion);
+}
+
+void check_no_flips(const Problem& p, bool no_flips) {
+  if (no_flips && p.image_dim != p.domain_dim)
+    throw InputError("relax: no_flips needs square Jacobians (planar triangles or tets); a triangle surface in 3D "
+                     "maps each triangle by a 3 by 2 Jacobian, which has no orientation sign");
 }
 
 // Packs the problem's elements and gradients, colours the free vertices and lists their
 // rings in sweep order.
 void build(const Problem& p, SweepData& s) {
-  const int d = p.image_dim;
-  if (d != p.domain_dim || (d != 2 && d != 3))
-    throw InputError("relax: needs image and domain dimension both 2 or both 3, got " + std::to_string(d) +
-                     " and " + std::to_string(p.domain_dim));
+  const int n = p.image_dim, m = p.domain_dim;
+  if (!((n == 2 && m == 2) || (n == 3 && m == 3) || (n == 3 && m == 2)))
+    throw InputError("relax: needs image and domain dimension 2 and 2 (planar), 3 and 3 (tets) or 3 and 2 (a "
+                     "triangle surface in 3D), got " + std::to_string(n) + " and " + std::to_string(m));
   if (p.has_equalities()) throw InputError("relax: linear equality constraints (seams) are not supported");
-  const int E = p.num_elements(), c = d + 1;
+  const int E = p.num_elements(), c = m + 1;
   if (p.elements.cols() != c || p.gradients.rows() != static_cast<Eigen::Index>(E) * c ||
-      p.targets.rows() != static_cast<Eigen::Index>(E) * d || p.weights.size() != E ||
-      static_cast<int>(p.fixed.size()) != p.num_vertices)
+      p.gradients.cols() != m || p.targets.rows() != static_cast<Eigen::Index>(E) * n || p.targets.cols() != m ||
+      p.weights.size() != E || static_cast<int>(p.fixed.size()) != p.num_vertices)
     throw InputError("relax: the problem's arrays do not match its element count and dimensions");
 
-  s.dim = d;
+  s.dim = n;
+  s.domain_dim = m;
   s.weights.assign(p.weights.data(), p.weights.data() + E);
   s.colouring = colour_free_vertices(p.elements, p.fixed);
   s.corners.resize(static_cast<size_t>(E) * c);
-  s.gradients.resize(static_cast<size_t>(E) * c * (d + 1));
+  s.gradients.resize(static_cast<size_t>(E) * c * (m + 1));
   std::vector<int> last_colour(E, -1);
   for (int e = 0; e < E; ++e)
     for (int j = 0; j < c; ++j) {
       const int v = p.elements(e, j);
       s.corners[e * c + j] = v;
-      double* G = &s.gradients[(e * c + j) * (d + 1)];
-      for (int k = 0; k < d; ++k) G[k] = p.gradients(e * c + j, k);
-      G[d] = 1.0 / p.gradients.row(e * c + j).squaredNorm();
+      double* G = &s.gradients[(e * c + j) * (m + 1)];
+      for (int k = 0; k < m; ++k) G[k] = p.gradients(e * c + j, k);
+      G[m] = 1.0 / p.gradients.row(e * c + j).squaredNorm();
       last_colour[e] = std::max(last_colour[e], s.colouring.colour[v]);
     }
   for (int e = 0; e < E; ++e)

@@ -15,11 +15,15 @@ namespace strictmin::relax_detail {
 // from the positions every this many sweeps so that rounding cannot pile up.
 constexpr int kRefreshInterval = 8;
 
+// Jacobians are n by m: n = dim (the image dimension, the map's columns), m = domain_dim;
+// 2 by 2 (planar), 3 by 3 (tets) or 3 by 2 (a triangle surface in 3D, each triangle in its
+// own frame).
 struct SweepData {
   int dim = 2;
+  int domain_dim = 2;
   VertexColouring colouring;
-  std::vector<int> corners;       // #E * (d+1) vertex indices
-  // #E * (d+1) * (d+1): corner j of e at (e*(d+1)+j)*(d+1): its gradient g, then 1 / |g|^2
+  std::vector<int> corners;       // #E * (m+1) vertex indices
+  // #E * (m+1) * (m+1): corner j of e at (e*(m+1)+j)*(m+1): its gradient g, then 1 / |g|^2
   std::vector<double> gradients;
   std::vector<int> ring_start;    // per position in colouring.order, into ring (+1 at the end)
   // element << 3 | corner << 1 | last, where last = 1 when, of the element's free corners,
@@ -29,6 +33,7 @@ struct SweepData {
   std::vector<int> closed;        // elements without a free corner: they never change
   int max_ring = 0;
   // RelaxOptions::no_flips: moves stay in the ring's kernel (det J_T > 0 where it was).
+  // Square Jacobians only (check_no_flips).
   bool no_flips = false;
   // Per position in colouring.order: the support of the vertex's last ring solve (up to 4
   // term indices within its ring, a byte each, 0xff = none), the next solve's first guess.
@@ -36,7 +41,7 @@ struct SweepData {
   std::unique_ptr<std::atomic<uint32_t>[]> guesses;
 };
 
-// J_T - R_T of every element (column-major d by d blocks) for the current map.
+// J_T - R_T of every element (column-major n by m blocks) for the current map.
 struct Deviations {
   std::vector<double> M;
   int age = -1;  // sweeps since computed from the positions; -1: not computed
@@ -45,6 +50,10 @@ struct Deviations {
 // Checks the problem (InputError) and fills s: packed elements and gradients, the colouring
 // of the free vertices, their rings in sweep order.
 void build(const Problem& p, SweepData& s);
+
+// Throws InputError when no_flips is asked for a problem whose Jacobians are not square (a
+// triangle surface in 3D: a 3 by 2 map has no sign of orientation, docs/arap.md).
+void check_no_flips(const Problem& p, bool no_flips);
 
 // One sweep over every free vertex, colour by colour, moving X in place; dev is computed
 // from X first if dev.age < 0, then kept up to date. A vertex moves to its ring's minimax

@@ -25,9 +25,12 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (surface && conformal)
     throw InputError("--measure " + measure_name(options.measure) +
                      " is defined for planar triangle meshes (2D maps); this is a triangle surface in 3D");
-  if (surface && options.solver.method == Method::Relax)
-    throw InputError("--method relax is not available for a triangle surface in 3D yet (its 1-ring solver is for "
-                     "square Jacobians); use linf or direct");
+  // A triangle of a 3D surface maps by a 3 by 2 Jacobian: it has no determinant, so "flipped"
+  // (det J <= 0) is undefined there, and no convex set of "unflipped" 3 by 2 maps exists
+  // (docs/arap.md, "Surfaces in 3D").
+  if (surface && (options.no_flips || options.local_global.no_flips || options.solver.relax.no_flips))
+    throw InputError("--no-flips is for planar triangle meshes and tet meshes; a triangle surface in 3D has no "
+                     "orientation to keep (each triangle's 3x2 Jacobian has no determinant sign)");
   out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
   const Eigen::MatrixXd rest = out.problem.positions;
   out.problem.fix(handles);

@@ -217,3 +217,28 @@ def test_read_write_round_trip(tmp_path):
         strictmin.read_mesh(tmp_path / "missing.obj")
     with pytest.raises(ValueError, match="quality has 3 values"):
         strictmin.write_mesh(tmp_path / "q.ply", V, F, quality=q[:3])
+
+
+def test_surface_relax_in_3d():
+    """A saddle surface in 3D deforms in 3D with relax (3x2 Jacobians): its far edge turned
+    about the z axis and lifted, the near edge held. With fd, arap and asap relax is no higher
+    than linf and less distorting in the strict order; the handles stay."""
+    n = 8
+    V, F = saddle(n)
+    near = np.arange(n + 1)
+    far = np.arange(n * (n + 1), (n + 1) * (n + 1))
+    idx = np.concatenate([near, far])
+    c, s = np.cos(0.4), np.sin(0.4)
+    pos = V[idx].copy()
+    pos[n + 1:] = pos[n + 1:] @ np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]]) + [0, 0, 0.3]
+    for measure in ("arap", "asap", "fd"):
+        linf = strictmin.deform(V, F, idx, pos, method="linf", measure=measure)
+        relax = strictmin.deform(V, F, idx, pos, method="relax", measure=measure)
+        assert relax.usable, relax.summary["stop_reason"]
+        assert relax.positions.shape == V.shape
+        assert np.allclose(relax.positions[idx], pos, atol=1e-12)
+        assert relax.summary["dimension"] == 3 and relax.summary["method"] == "relax"
+        assert linf.max_distortion > 0.01  # a real deformation (asap: 0.03)
+        assert relax.max_distortion <= linf.max_distortion * (1 + 1e-4)
+        tolerance = 1e-4 * linf.max_distortion
+        assert strictmin.compare(relax.distortion, linf.distortion, linf.weights, tolerance).order == -1

@@ -19,17 +19,27 @@ struct RingTerm {
 };
 
 // The term of an element whose deviation J_T - R_T is M + q g^T when its ring vertex moves
-// by q (g: that corner's gradient, inv_a = 1 / ||g||^2): a = ||g||^2, c = -M g / a, and
-// b = ||M (I - g g^T / a)||^2, M on the complement of g (>= 0 without cancellation).
-template <int d>
-inline RingTerm<d> ring_term(const Eigen::Matrix<double, d, d>& M, const Eigen::Matrix<double, d, 1>& g,
+// by q (M: n by m, with n the image and m the domain dimension; g: that corner's gradient,
+// inv_a = 1 / ||g||^2): a = ||g||^2, c = -M g / a, and b = ||M (I - g g^T / a)||^2, M on the
+// complement of g (>= 0 without cancellation). Expanding ||M + q g^T||^2 = ||M||^2 +
+// 2 q^T M g + ||g||^2 ||q||^2 gives a ||q - c||^2 + b for any n and m (docs/maths.md): a
+// triangle of a 3D surface (3 by 2 Jacobian) gives a term in q in R^3 like a tet.
+template <int n, int m>
+inline RingTerm<n> ring_term(const Eigen::Matrix<double, n, m>& M, const Eigen::Matrix<double, m, 1>& g,
                              double inv_a) {
-  const Eigen::Matrix<double, d, 1> Mg = M * g;
-  RingTerm<d> t;
+  const Eigen::Matrix<double, n, 1> Mg = M * g;
+  RingTerm<n> t;
   t.a = g.squaredNorm();
   t.centre = -inv_a * Mg;
   t.b = (M - (inv_a * Mg) * g.transpose()).squaredNorm();
   return t;
+}
+
+// The square case (planar triangles, tets): d by d.
+template <int d>
+inline RingTerm<d> ring_term(const Eigen::Matrix<double, d, d>& M, const Eigen::Matrix<double, d, 1>& g,
+                             double inv_a) {
+  return ring_term<d, d>(M, g, inv_a);
 }
 
 template <int d>
