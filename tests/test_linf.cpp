@@ -431,11 +431,17 @@ TEST(Linf, CamelheadSurfaceWithThreeFixedVertices) {
   const Result l2 = solve_l2(pinned);
   ASSERT_TRUE(l2.ok()) << l2.message;
   const Result r = solve_linf(p);
-  ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
+  // On this graded mesh the certified gap ends near the 1e-8 tolerance: 2.3e-8 on some
+  // processors (almost-solved, docs/linf.md "Accuracy"), below it on others. Either way the
+  // status must say which, and the gap stay within the almost-solved band.
+  ASSERT_TRUE(r.status == SolveStatus::Solved || r.status == SolveStatus::AlmostSolved) << r.message;
+  if (r.status == SolveStatus::Solved) {
+    EXPECT_LE(relative_gap(r), 1e-8) << r.message;
+  }
   ASSERT_TRUE(r.positions.allFinite());
   ASSERT_TRUE(r.distortion.allFinite());
   EXPECT_LE(r.lower_bound, r.distortion.maxCoeff());
-  EXPECT_LE(relative_gap(r), 1e-6) << r.message;  // "reduced accuracy" allowed on this graded mesh
+  EXPECT_LE(relative_gap(r), 1e-6) << r.message;
   EXPECT_LT(r.distortion.maxCoeff(), l2.distortion.maxCoeff());
   std::printf("camelhead (%d triangles): k = %.10f, bound %.10f, %d iterations, %.2f s %s\n", p.num_elements(),
               r.distortion.maxCoeff(), r.lower_bound, r.iterations, r.time_s, r.message.c_str());

@@ -48,7 +48,7 @@ struct LinfOptions {
   double l2_slack = 1e-6;
   // When the interior-point method cannot reach gap_tolerance (near the optimum the Newton
   // systems of badly graded meshes exceed double precision), a certified relative gap below
-  // acceptable_gap_tolerance still counts as solved, with a "reduced accuracy" message.
+  // acceptable_gap_tolerance ends almost-solved (usable), with a "reduced accuracy" message.
   double acceptable_gap_tolerance = 1e-6;
   // Near the optimum, certify with the problem restricted to the elements within reach of the
   // maximum (a relaxation, so its certified bound holds for the whole problem; see
