@@ -142,10 +142,6 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
   const Method method = options.solver.method;
   if (method == Method::Exact)
     throw InputError("interp: the exact strict minimizer is for field deviation only; use direct or relax");
-  if (kind_ == InterpKind::Surface && (method == Method::Relax || method == Method::Direct))
-    throw InputError("interp: " + method_name(method) +
-                     " needs maps between spaces of the same dimension (planar triangles or tets); for 3D surfaces "
-                     "use l2, linf, lp or irls");
   const int V = problem_.num_vertices;
   if (options.pin_vertex >= V || (options.pin_vertex >= 0 && component_[options.pin_vertex] < 0))
     throw InputError("interp: pinned vertex " + std::to_string(options.pin_vertex) + " is not a vertex of an element (the mesh has " +
