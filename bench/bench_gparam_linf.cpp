@@ -4,7 +4,8 @@
 //   STRICTMIN_LINF_VERBOSE=1 bench_gparam_linf mesh.obj [mesh.obj ...]
 //
 // Prints per mesh: faces, the time of the solve, iterations, status, k, certified bound,
-// seam violation (largest |A q - b|).
+// seam violation (largest |A q - b|). STRICTMIN_LINF_PENALTY=1: the equalities by the penalty
+// (LinfOptions::eliminate_equalities false), for comparisons.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
                      r.lower_bound, r.certified_gap, r.time_s);
       };
     const auto t0 = std::chrono::steady_clock::now();
+    if (std::getenv("STRICTMIN_LINF_PENALTY")) lo.eliminate_equalities = false;
     const Result r = solve_linf(g.problem, lo);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // positions are #V by 2 column-major; the equalities are on the vertex-major vector.

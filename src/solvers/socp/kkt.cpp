@@ -61,7 +61,7 @@ void NormalEquations::build_pattern() {
   npairs_ = L * (L + 1) / 2;
   // Equalities: eliminated exactly on dx = Z dy where they have vertex-block form (the seams),
   // otherwise by the penalty. The system's unknowns are then the y nodes' dofs.
-  if (p_.num_eq() > 0) {
+  if (p_.num_eq() > 0 && settings_.eliminate_equalities) {
     null_space_ = block_null_space(p_);
     elim_ = null_space_.ok;
   }
@@ -302,9 +302,21 @@ void NormalEquations::build_pattern() {
     cholesky_ = std::make_unique<SupernodalCholesky>();
     if (!cholesky_->analyze(matrix_)) cholesky_.reset();
   }
-  if (settings_.verbose && elim_)
-    std::fprintf(stderr, "kkt: %d equalities eliminated: %d of %d free vertices are unknowns, %zu seam pair terms\n",
-                 p_.num_eq(), null_space_.num_nodes, p_.num_x / n, extra_.size());
+  if (settings_.verbose && elim_) {
+    int most_terms = 0;
+    std::vector<int> users(null_space_.num_nodes, 0);
+    for (size_t f = 0; f + 1 < null_space_.offset.size(); ++f) {
+      most_terms = std::max(most_terms, null_space_.offset[f + 1] - null_space_.offset[f]);
+      for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t) ++users[null_space_.node[t]];
+    }
+    std::sort(users.rbegin(), users.rend());
+    std::fprintf(stderr,
+                 "kkt: %d equalities eliminated: %d of %d free vertices are unknowns, %zu terms (at most %d per "
+                 "vertex), most used nodes %d %d %d, %zu seam pair terms\n",
+                 p_.num_eq(), null_space_.num_nodes, p_.num_x / n, null_space_.node.size(), most_terms,
+                 users.size() > 0 ? users[0] : 0, users.size() > 1 ? users[1] : 0, users.size() > 10 ? users[10] : 0,
+                 extra_.size());
+  }
   if (settings_.verbose && N > 0) {
     std::fprintf(stderr, "kkt: %d dofs, %ld nonzeros, factor %.3g nonzeros, %.3g flops per factorisation\n", N,
                  static_cast<long>(matrix_.nonZeros()), factor_nonzeros(), analyze_flops());
