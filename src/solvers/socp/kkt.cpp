@@ -535,7 +535,7 @@ void NormalEquations::finish_bordering(const Eigen::VectorXd& b, Eigen::VectorXd
 void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2,
                                    Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w) const {
   dk = 0;
-  if (p_.num_x == 0) {
+  if (nsys_ == 0) {  // no unknown dofs (with elimination: every free dof fixed by the equalities)
     dx.resize(0);
     if (p_.has_k) dk = r1k / schur_;
     w.setZero(p_.num_eq());
@@ -619,7 +619,7 @@ int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold,
   Eigen::VectorXd w, zx, px, apx;
   double zk = 0, pk = 0, apk = 0;
   solve_normal(bx, bk, zero_eq, x, k, w);
-  if (p_.num_x == 0) return 0;
+  if (nsys_ == 0) return 0;
   if (!(std::max(max_abs(bx), std::abs(bk)) > 0)) return 0;
   Eigen::VectorXd rx;
   double rk = 0;
