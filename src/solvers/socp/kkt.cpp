@@ -256,6 +256,10 @@ void NormalEquations::build_pattern() {
             }
         }
     }
+    // In the matrix's order: the gather then writes each nonzero once, in sequence.
+    std::sort(extra_.begin(), extra_.end(), [](const ExtraSlot& a, const ExtraSlot& b) {
+      return a.target < b.target || (a.target == b.target && a.slot < b.slot);
+    });
   }
   std::vector<int> count(nnz + 1, 0);
   for (int target : slot_target_)
