@@ -67,6 +67,54 @@ class BlockEliminator {
     return true;
   }
 
+  // A change of basis that gives each seam branch one translation node instead of two
+  // anchors: along a branch every pivoted wedge is a_j = R b_j + a_0 - R b_0, so wherever
+  // node p (a_0) is used with block P, node q (b_0) is used with -P M (M = R). Then
+  // P p - P M q = P t with t = p - M q: p's users drop q, and p's own vertex becomes t + M q.
+  // Exact (M is a product of the blocks), and it halves the nodes that couple a whole branch.
+  void merge_translations() {
+    const int F = static_cast<int>(expr_.size());
+    std::vector<int> order;
+    for (int p = 0; p < F; ++p)
+      if (users_[p].size() > 2) order.push_back(p);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return users_[a].size() > users_[b].size() || (users_[a].size() == users_[b].size() && a < b);
+    });
+    for (int p : order) {
+      std::vector<int> others;
+      for (int u : users_[p])
+        if (u != p) others.push_back(u);
+      if (others.size() < 2 || expr_[p].size() != 1) continue;  // p's vertex must be p itself
+      std::sort(others.begin(), others.end());
+      const Expr& first = expr_[others[0]];
+      const Block& p0 = first.at(p);
+      if (std::abs(det(p0)) < 0.5) continue;
+      const Eigen::MatrixXd p0_inv = p0.topLeftCorner(n_, n_).inverse();
+      std::vector<std::pair<int, Block>> candidates(first.begin(), first.end());  // copies: first changes below
+      for (const auto& [q, q0] : candidates) {
+        if (q == p) continue;
+        Block m = Block::Zero();
+        m.topLeftCorner(n_, n_) = -p0_inv * q0.topLeftCorner(n_, n_);  // q0 = -P0 M
+        bool all = true;
+        for (int u : others) {
+          const auto pu = expr_[u].find(p), qu = expr_[u].find(q);
+          if (qu == expr_[u].end() || ((qu->second + pu->second * m).cwiseAbs().maxCoeff() > kDrop)) {
+            all = false;
+            break;
+          }
+        }
+        if (!all) continue;
+        for (int u : others) {
+          expr_[u].erase(q);
+          users_[q].erase(u);
+        }
+        expr_[p][q] = m;  // x_p = t + M q
+        users_[q].insert(p);
+        break;
+      }
+    }
+  }
+
   BlockNullSpace finish() const {
     BlockNullSpace out;
     out.ok = true;
@@ -140,6 +188,7 @@ BlockNullSpace block_null_space(const ConeProgram& p) {
     row.assign(blocks.begin(), blocks.end());
     if (!elim.add_row(row)) return {};
   }
+  elim.merge_translations();
   return elim.finish();
 }
 
