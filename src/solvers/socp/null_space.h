@@ -8,7 +8,11 @@
 // substituted, expresses one vertex block (the pivot: a block of largest |det|, fewest
 // dependents) through the others; block rows that reduce to nothing are redundant. Every
 // free vertex is then x_f = sum_t B_t y_{node_t}, the y nodes being the vertices that were
-// never pivots. Quarter-turn blocks have entries 0 and +-1, so the basis is exact.
+// never pivots. Along a seam branch that makes a_j = R b_j + a_0 - R b_0; a change of basis
+// then takes t = a_0 - R b_0 as the node in a_0's place (a_j = R b_j + t, a_0 = t + R b_0), so
+// that one node per branch, not two, couples the elements along it. Quarter-turn blocks have
+// entries 0 and +-1 (and (I - R)^-1 of one, at singular vertices, halves), so the basis is
+// exact.
 //
 // Not every A has this form (rows not in blocks of n, a block row whose reduced blocks are
 // all singular): ok is then false and the caller keeps the penalty.
