@@ -21,6 +21,7 @@ socp::IpmSettings ipm_settings(const LinfOptions& o) {
   s.step_fraction = o.step_fraction;
   s.regularization = o.regularization;
   s.refinement_steps = o.refinement_steps;
+  s.eliminate_equalities = o.eliminate_equalities;
   s.verbose = o.verbose;
   return s;
 }

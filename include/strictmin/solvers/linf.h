@@ -59,6 +59,10 @@ struct LinfOptions {
   double step_fraction = 0.95;
   double regularization = 1e-15;
   int refinement_steps = 10;
+  // Linear equalities in vertex-block form (the seams of global parametrization) are
+  // eliminated exactly in the Newton systems (socp/null_space.h); false keeps the older
+  // penalty with refinement for them too (for comparisons).
+  bool eliminate_equalities = true;
   int verbose = 0;  // 1: one line per interior-point iteration on stderr; 2: also linear-algebra details
 
   // Ranges: gap_tolerance, feasibility_tolerance, infeasibility_tolerance and

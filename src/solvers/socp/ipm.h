@@ -26,7 +26,9 @@
 
 namespace strictmin::socp {
 
-// s = M v + o moved inside the cones where it is not (heads raised to ||tail|| + margin),
+// s = M v + o moved inside the cones where it is not (heads raised to ||tail|| + margin, and,
+// with equalities, the small elements' further, so that det(s_i) w_i is at least its smallest
+// value: ipm.cpp),
 // z = mu0 s^{-1} (so that s o z = mu0 e: a perfectly centred start) with mu0 chosen so that
 // the k part of the dual residual vanishes (or from dual_scale without k), y = 0.
 void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, double margin, double dual_scale,

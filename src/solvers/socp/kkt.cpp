@@ -57,20 +57,40 @@ NormalEquations::NormalEquations(const ConeProgram& program, const IpmSettings& 
 }
 
 void NormalEquations::build_pattern() {
-  const int N = p_.num_x, n = p_.n, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
+  const int n = p_.n, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
   npairs_ = L * (L + 1) / 2;
+  // Equalities: eliminated exactly on dx = Z dy where they have vertex-block form (the seams),
+  // otherwise by the penalty. The system's unknowns are then the y nodes' dofs.
+  if (p_.num_eq() > 0 && settings_.eliminate_equalities) {
+    null_space_ = block_null_space(p_);
+    elim_ = null_space_.ok;
+  }
+  nsys_ = elim_ ? null_space_.num_dofs(n) : p_.num_x;
+  const int N = nsys_;
   const int F = N / n;
-  // The free vertices' graph: elements and equality rows couple their vertices.
+  // The free vertices' graph (with elimination: the y nodes' graph): elements and equality
+  // rows couple their vertices.
   std::vector<int> offset(F + 1, 0), adj;
   {
     std::vector<std::vector<int>> nb(F);
-    for (int i = 0; i < E; ++i)
-      for (int a = 0; a < c; ++a)
-        for (int b = 0; b < c; ++b) {
-          const int fa = p_.dof_base[i * c + a], fb = p_.dof_base[i * c + b];
-          if (fa >= 0 && fb >= 0 && fa != fb) nb[fa / n].push_back(fb / n);
+    std::vector<int> nodes;
+    for (int i = 0; i < E; ++i) {
+      nodes.clear();
+      for (int a = 0; a < c; ++a) {
+        const int base = p_.dof_base[i * c + a];
+        if (base < 0) continue;
+        if (!elim_) {
+          nodes.push_back(base / n);
+          continue;
         }
-    if (p_.num_eq() > 0) {
+        const int f = base / n;
+        for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t) nodes.push_back(null_space_.node[t]);
+      }
+      for (int a : nodes)
+        for (int b : nodes)
+          if (a != b) nb[a].push_back(b);
+    }
+    if (p_.num_eq() > 0 && !elim_) {
       for (int row = 0; row < p_.A.rows(); ++row)
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator a(p_.A, row); a; ++a)
           for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator b(p_.A, row); b; ++b)
@@ -156,23 +176,44 @@ void NormalEquations::build_pattern() {
     const int a = perm_[r], b = perm_[col];
     return std::make_pair(std::min(a, b), std::max(a, b));
   };
-  // Equalities: A^T A / rho joins the matrix (its couplings are edges of the graph above).
+  // Equalities: A^T A / rho joins the matrix (its couplings are edges of the graph above),
+  // unless they are eliminated; then A A^T gives the particular solutions and multipliers.
   Eigen::SparseMatrix<double> ata;
   if (p_.num_eq() > 0) {
     at_ = p_.A.transpose();
-    ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
+    if (!elim_) ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
+    else factor_aat();
   }
   const Eigen::Index nnz = matrix_.nonZeros();
   slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
   p_values_.setZero(nnz);
+  // A corner is simple when its dofs are n system dofs of their own (always without
+  // elimination; with it, a vertex that is its own y node). An element of simple corners maps
+  // each pair to one nonzero; the others (along the seams) spread each pair over the y dofs
+  // of their corners' terms (extra_).
+  auto simple_corner = [&](int base) {
+    if (base < 0 || !elim_) return true;
+    const int f = base / n, t = null_space_.offset[f];
+    if (null_space_.offset[f + 1] != t + 1) return false;
+    const double* b = null_space_.block.data() + static_cast<size_t>(t) * n * n;
+    for (int r = 0; r < n; ++r)
+      for (int s = 0; s < n; ++s)
+        if (b[r * n + s] != (r == s ? 1.0 : 0.0)) return false;
+    return true;
+  };
+  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
+  std::vector<char> simple_element(E, 1);
   // Each element pair's nonzero (in parallel), then the counts.
   parallel_for_index(E, kGrain, [&](int begin, int end) {
     std::vector<int> local(L);
     for (int i = begin; i < end; ++i) {
       for (int j = 0; j < c; ++j)
+        if (!simple_corner(p_.dof_base[i * c + j])) simple_element[i] = 0;
+      if (!simple_element[i]) continue;
+      for (int j = 0; j < c; ++j)
         for (int r = 0; r < n; ++r) {
           const int base = p_.dof_base[i * c + j];
-          local[j * n + r] = base < 0 ? -1 : perm_[base + r];
+          local[j * n + r] = base < 0 ? -1 : perm_[corner_dof(base) + r];
         }
       for (int l1 = 0; l1 < L; ++l1)
         for (int l2 = 0; l2 <= l1; ++l2)
@@ -181,21 +222,64 @@ void NormalEquations::build_pattern() {
                 find(std::min(local[l1], local[l2]), std::max(local[l1], local[l2]));
     }
   });
+  extra_.clear();
+  if (elim_) {
+    // Local dof l = (corner j, row r) is sum over its vertex's terms of block(r, s) y(node, s):
+    // entry (a, b) of Z^T H Z gets sum Z_ia H_ij Z_jb over ordered (i, j). A pair l1 > l2 stands
+    // for (l1, l2) and (l2, l1); a diagonal pair for (l, l) only.
+    std::vector<std::vector<std::pair<int, double>>> expansion(L);
+    for (int i = 0; i < E; ++i) {
+      if (simple_element[i]) continue;
+      for (int j = 0; j < c; ++j)
+        for (int r = 0; r < n; ++r) {
+          auto& e = expansion[j * n + r];
+          e.clear();
+          const int base = p_.dof_base[i * c + j];
+          if (base < 0) continue;
+          const int f = base / n;
+          for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t)
+            for (int s = 0; s < n; ++s) {
+              const double b = null_space_.block[(static_cast<size_t>(t) * n + r) * n + s];
+              if (b != 0.0) e.emplace_back(perm_[null_space_.node[t] * n + s], b);
+            }
+        }
+      for (int l1 = 0; l1 < L; ++l1)
+        for (int l2 = 0; l2 <= l1; ++l2) {
+          const int slot = i * npairs_ + pair_index(l1, l2);
+          const auto &e1 = expansion[l1], &e2 = expansion[l2];
+          for (size_t a = 0; a < e1.size(); ++a)
+            for (size_t b = (l1 == l2 ? a : 0); b < e2.size(); ++b) {
+              const int ya = e1[a].first, yb = e2[b].first;
+              double coef = e1[a].second * e2[b].second;
+              if (ya == yb && l1 != l2) coef *= 2.0;
+              extra_.push_back({slot, find(std::min(ya, yb), std::max(ya, yb)), coef});
+            }
+        }
+    }
+    // In the matrix's order: the gather then writes each nonzero once, in sequence.
+    std::sort(extra_.begin(), extra_.end(), [](const ExtraSlot& a, const ExtraSlot& b) {
+      return a.target < b.target || (a.target == b.target && a.slot < b.slot);
+    });
+  }
   std::vector<int> count(nnz + 1, 0);
   for (int target : slot_target_)
     if (target >= 0) ++count[target + 1];
-  if (p_.has_quad())
-    for (int i = 0; i < E; ++i) {
+  if (p_.has_quad()) {
+    auto slot_p = [&](int slot) {  // the objective's 2 w_i (I (x) L_i) entry of a pair
+      const int i = slot / npairs_, pair = slot % npairs_;
+      int l1 = 0;
+      while (pair_index(l1 + 1, 0) <= pair) ++l1;
+      const int l2 = pair - pair_index(l1, 0);
+      if (l1 % n != l2 % n) return 0.0;
       const double* g = p_.grad.data() + static_cast<size_t>(i) * c * p_.m;
-      for (int l1 = 0; l1 < L; ++l1)
-        for (int l2 = 0; l2 <= l1; ++l2) {
-          const int nz = slot_target_[static_cast<size_t>(i) * npairs_ + pair_index(l1, l2)];
-          if (nz < 0 || l1 % n != l2 % n) continue;
-          double gram = 0;
-          for (int col = 0; col < p_.m; ++col) gram += g[(l1 / n) * p_.m + col] * g[(l2 / n) * p_.m + col];
-          p_values_[nz] += 2.0 * p_.quad_weight[i] * gram;
-        }
-    }
+      double gram = 0;
+      for (int col = 0; col < p_.m; ++col) gram += g[(l1 / n) * p_.m + col] * g[(l2 / n) * p_.m + col];
+      return 2.0 * p_.quad_weight[i] * gram;
+    };
+    for (size_t slot = 0; slot < slot_target_.size(); ++slot)
+      if (slot_target_[slot] >= 0) p_values_[slot_target_[slot]] += slot_p(static_cast<int>(slot));
+    for (const ExtraSlot& x : extra_) p_values_[x.target] += x.coef * slot_p(x.slot);
+  }
   for (Eigen::Index z = 0; z < nnz; ++z) count[z + 1] += count[z];
   gather_offset_.assign(count.begin(), count.end());
   gather_.assign(count.back(), 0);
@@ -222,6 +306,21 @@ void NormalEquations::build_pattern() {
     cholesky_ = std::make_unique<SupernodalCholesky>();
     if (!cholesky_->analyze(matrix_)) cholesky_.reset();
   }
+  if (settings_.verbose && elim_) {
+    int most_terms = 0;
+    std::vector<int> users(null_space_.num_nodes, 0);
+    for (size_t f = 0; f + 1 < null_space_.offset.size(); ++f) {
+      most_terms = std::max(most_terms, null_space_.offset[f + 1] - null_space_.offset[f]);
+      for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t) ++users[null_space_.node[t]];
+    }
+    std::sort(users.rbegin(), users.rend());
+    std::fprintf(stderr,
+                 "kkt: %d equalities eliminated: %d of %d free vertices are unknowns, %zu terms (at most %d per "
+                 "vertex), most used nodes %d %d %d, %zu seam pair terms\n",
+                 p_.num_eq(), null_space_.num_nodes, p_.num_x / n, null_space_.node.size(), most_terms,
+                 users.size() > 0 ? users[0] : 0, users.size() > 1 ? users[1] : 0, users.size() > 10 ? users[10] : 0,
+                 extra_.size());
+  }
   if (settings_.verbose && N > 0) {
     std::fprintf(stderr, "kkt: %d dofs, %ld nonzeros, factor %.3g nonzeros, %.3g flops per factorisation\n", N,
                  static_cast<long>(matrix_.nonZeros()), factor_nonzeros(), analyze_flops());
@@ -245,7 +344,7 @@ Eigen::VectorXd NormalEquations::llt_solve(const Eigen::VectorXd& b) const {
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
   SerialCholmodScope serial;  // one BLAS thread (serial_cholmod_scope.h)
   ++timers_.solves;
-  const int N = p_.num_x;
+  const int N = nsys_;
   Eigen::VectorXd bp(N), out(N);
   for (int d = 0; d < N; ++d) bp[perm_[d]] = b[d];
   Eigen::VectorXd xp(N);
@@ -262,7 +361,7 @@ void NormalEquations::llt_solve2(const Eigen::VectorXd& b0, const Eigen::VectorX
   PhaseTimer timer(timers_.solve_wall, timers_.solve_cpu);
   SerialCholmodScope serial;  // one BLAS thread (serial_cholmod_scope.h)
   ++timers_.solves;
-  const int N = p_.num_x;
+  const int N = nsys_;
   Eigen::VectorXd bp0(N), bp1(N), xp0(N), xp1(N);
   for (int d = 0; d < N; ++d) {
     bp0[perm_[d]] = b0[d];
@@ -289,7 +388,7 @@ bool NormalEquations::factor(const Scaling& sc) {
     last = now;
     return s;
   };
-  const int N = p_.num_x, n = p_.n, m = p_.m, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
+  const int N = nsys_, n = p_.n, m = p_.m, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
   const bool has_k = p_.has_k;
   PhaseTimer assemble_timer(timers_.assemble_wall, timers_.assemble_cpu);
   // Element contributions, in parallel; the k-k entry sums in a fixed order (deterministic
@@ -351,14 +450,15 @@ bool NormalEquations::factor(const Scaling& sc) {
         values[z] = t;
       }
     });
+    for (const ExtraSlot& x : extra_) values[x.target] += x.coef * slot_values_[x.slot];
     double mx = 0;
     for (int d = 0; d < N; ++d) mx = std::max(mx, values[diagonal_[d]]);
     return mx;
   }();
   const double t_assemble = lap();
   if (!std::isfinite(max_diag_raw) || max_diag_raw <= 0) return false;
-  inv_rho_ = p_.num_eq() > 0 ? max_diag_raw / settings_.equality_penalty : 0.0;
-  if (p_.num_eq() > 0)
+  inv_rho_ = p_.num_eq() > 0 && !elim_ ? max_diag_raw / settings_.equality_penalty : 0.0;
+  if (p_.num_eq() > 0 && !elim_)
     for (Eigen::Index z = 0; z < matrix_.nonZeros(); ++z) values[z] += inv_rho_ * ata_values_[z];
   assemble_timer.stop();
   PhaseTimer factor_timer(timers_.factorize_wall, timers_.factorize_cpu);
@@ -385,8 +485,8 @@ bool NormalEquations::factor(const Scaling& sc) {
   if (!ok) return false;
   PhaseTimer border_timer(timers_.border_wall, timers_.border_cpu);
   if (has_k) {
-    hxk_.setZero(N);
-    const int free_vertices = N / n;
+    hxk_.setZero(p_.num_x);
+    const int free_vertices = p_.num_x / n;
     parallel_for_index(free_vertices, kGrain, [&](int begin, int end) {
       for (int f = begin; f < end; ++f)
         for (int e = p_.incidence_offset[f]; e < p_.incidence_offset[f + 1]; ++e) {
@@ -394,6 +494,11 @@ bool NormalEquations::factor(const Scaling& sc) {
           for (int r = 0; r < n; ++r) hxk_[f * n + r] += cone_k_[static_cast<Eigen::Index>(i) * L + j * n + r];
         }
     });
+    if (elim_) {
+      Eigen::VectorXd reduced;
+      apply_zt(null_space_, n, hxk_, reduced);
+      hxk_.swap(reduced);
+    }
     // u = H_xx^{-1} h_xk is solved together with the first right-hand side (solve_normal):
     // one pass over the factor for both.
     border_pending_ = true;
@@ -413,16 +518,17 @@ void NormalEquations::finish_bordering(const Eigen::VectorXd& b, Eigen::VectorXd
   // x = -u: S = sum_i ||W_i^{-1} M_i (-u, 1)||^2, a sum of squares without cancellation
   // (plus the regularisation's share, which the factor also contains).
   Eigen::VectorXd mv, wm;
-  p_.apply_m(-u_, 1.0, false, mv);
+  const Eigen::VectorXd xu = to_dofs(u_);
+  p_.apply_m(-xu, 1.0, false, mv);
   apply_scaling(p_, *scaling_, ScalingOp::WInv, mv, wm);
   const double* values = matrix_.valuePtr();
   double reg_part = 0;
-  for (int d = 0; d < p_.num_x; ++d) reg_part += (values[diagonal_[d]] - diag_saved_[d]) * u_[d] * u_[d];
+  for (int d = 0; d < nsys_; ++d) reg_part += (values[diagonal_[d]] - diag_saved_[d]) * u_[d] * u_[d];
   schur_ = wm.squaredNorm() + reg_part;
   if (p_.has_quad()) {
     Eigen::VectorXd pu;
-    p_.apply_p(u_, pu);
-    schur_ += u_.dot(pu);
+    p_.apply_p(xu, pu);
+    schur_ += xu.dot(pu);
   }
   if (!(schur_ > 0) || !std::isfinite(schur_) || !u_.allFinite()) {
     border_failed_ = true;
@@ -433,14 +539,14 @@ void NormalEquations::finish_bordering(const Eigen::VectorXd& b, Eigen::VectorXd
 void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2,
                                    Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w) const {
   dk = 0;
-  if (p_.num_x == 0) {
+  if (nsys_ == 0) {  // no unknown dofs (with elimination: every free dof fixed by the equalities)
     dx.resize(0);
     if (p_.has_k) dk = r1k / schur_;
     w.setZero(p_.num_eq());
     return;
   }
   Eigen::VectorXd b = r1x;
-  if (p_.num_eq() > 0) b.noalias() += inv_rho_ * (at_ * r2);
+  if (p_.num_eq() > 0 && !elim_) b.noalias() += inv_rho_ * (at_ * r2);
   if (border_pending_)
     finish_bordering(b, dx);
   else
@@ -449,13 +555,51 @@ void NormalEquations::solve_normal(const Eigen::VectorXd& r1x, double r1k, const
     dk = (r1k - hxk_.dot(dx)) / schur_;
     dx.noalias() -= dk * u_;
   }
-  if (p_.num_eq() > 0)
+  if (p_.num_eq() > 0 && !elim_)
     w = inv_rho_ * (p_.A * dx - r2);
   else
     w.resize(0);
 }
 
+Eigen::VectorXd NormalEquations::to_dofs(const Eigen::VectorXd& y) const {
+  if (!elim_) return y;
+  Eigen::VectorXd x;
+  apply_z(null_space_, p_.n, y, x);
+  return x;
+}
+
+void NormalEquations::factor_aat() {
+  // A A^T (+ a tiny diagonal: redundant rows make it singular, and their right-hand sides
+  // are consistent), for x = A^T (A A^T)^-1 r and least-squares multipliers.
+  Eigen::SparseMatrix<double> aat = Eigen::SparseMatrix<double>(p_.A * at_);
+  double mx = 0;
+  for (int r = 0; r < aat.rows(); ++r) mx = std::max(mx, aat.coeff(r, r));
+  for (int r = 0; r < aat.rows(); ++r) aat.coeffRef(r, r) += 1e-13 * mx;
+  aat_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(aat);
+}
+
+void NormalEquations::apply_full(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const {
+  PhaseTimer timer(timers_.apply_wall, timers_.apply_cpu);
+  ++timers_.applies;
+  Eigen::VectorXd mv, t2;
+  p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
+  apply_scaling(p_, *scaling_, ScalingOp::WInv2, mv, t2);
+  p_.apply_mt(t2, ox, ok);
+  if (p_.has_quad()) {
+    Eigen::VectorXd px;
+    p_.apply_p(dx, px);
+    ox += px;
+  }
+  if (!p_.has_k) ok = 0;
+}
+
 void NormalEquations::apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const {
+  if (elim_) {  // Z^T (H + P) Z
+    Eigen::VectorXd full;
+    apply_full(to_dofs(dx), dk, full, ok);
+    apply_zt(null_space_, p_.n, full, ox);
+    return;
+  }
   PhaseTimer timer(timers_.apply_wall, timers_.apply_cpu);
   ++timers_.applies;
   Eigen::VectorXd mv, t2;
@@ -479,7 +623,7 @@ int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold,
   Eigen::VectorXd w, zx, px, apx;
   double zk = 0, pk = 0, apk = 0;
   solve_normal(bx, bk, zero_eq, x, k, w);
-  if (p_.num_x == 0) return 0;
+  if (nsys_ == 0) return 0;
   if (!(std::max(max_abs(bx), std::abs(bk)) > 0)) return 0;
   Eigen::VectorXd rx;
   double rk = 0;
@@ -541,6 +685,29 @@ void NormalEquations::solve_unreduced(const Eigen::VectorXd& rdx, double rdk, co
   p_.apply_mt(t, r1x, r1k);
   r1x -= rdx;
   r1k -= rdk;
+  if (elim_) {
+    // dx = x_p + Z dy with A x_p = re (least norm); Z^T (H + P) Z dy = Z^T (r1 - (H + P) x_p);
+    // then A^T w = r1 - (H + P) dv in least squares (exact when the reduced equations hold).
+    Eigen::VectorXd xp, hx, b, dy;
+    double hk = 0;
+    const bool particular = re.size() > 0 && max_abs(re) > 0;
+    Eigen::VectorXd r1 = r1x;
+    double rk = r1k;
+    if (particular) {
+      xp = at_ * aat_->solve(re);
+      apply_full(xp, 0.0, hx, hk);
+      r1 -= hx;
+      rk -= hk;
+    }
+    apply_zt(null_space_, p_.n, r1, b);
+    steps = pcg(b, p_.has_k ? rk : 0.0, threshold, dy, dk);
+    dx = to_dofs(dy);
+    if (particular) dx += xp;
+    apply_full(dx, dk, hx, hk);
+    w = aat_->solve(p_.A * (r1x - hx));
+    if (dz) cone_direction_parts(p_, *scaling_, dx, p_.has_k ? dk : 0.0, &rc, dz, nullptr, nullptr, nullptr, nullptr);
+    return;
+  }
   if (p_.num_eq() > 0) r1x.noalias() += inv_rho_ * (at_ * re);
   steps = pcg(r1x, p_.has_k ? r1k : 0.0, threshold, dx, dk);
   if (p_.num_eq() > 0)
@@ -569,7 +736,7 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   const double tol = tolerance > 0 ? tolerance : settings_.refinement_tolerance;
   const double threshold = std::max(tol * scale, 1e-14);
   // Outer refinement: removes the penalty's effect on the equalities (and any rest).
-  const int outer = p_.num_eq() > 0 ? 3 : 0;
+  const int outer = p_.num_eq() > 0 && !elim_ ? 3 : 0;
   // The residual check costs four passes over the cones; auxiliary directions (predictor,
   // correctors: tolerance given) without equalities skip it (their CG residual is reported)
   // and form all their cone parts in one pass.
@@ -578,7 +745,7 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   d.refinement = steps;
   if (unchecked) {
     d.residual = 0;
-    d.dy.resize(0);
+    d.dy = -w;
     cone_direction_parts(p_, sc, d.dx, p_.has_k ? d.dk : 0.0, &rc, &d.dz, &rs, &d.ds, &d.dst, &d.dzt);
     return;
   }

@@ -14,19 +14,26 @@
 // - k couples to every dof (a dense row and column). It is eliminated by bordering: one extra
 //   solve per factorisation gives u = H_xx^{-1} h_xk and the Schur complement
 //   S = h_kk - h_xk^T u, then every right-hand side costs one sparse solve.
-// - Equalities are eliminated by a penalty (H_xx + A^T A / rho, pattern fixed).
+// - Equalities in vertex-block form (the seams of global parametrization) are eliminated
+//   exactly: dx = x_p + Z dy with Z a block null-space basis of A (null_space.h), and the
+//   factorised matrix is Z^T (H_xx + P) Z over the y nodes' dofs (an element along a seam
+//   spreads its pairs over its corners' terms). x_p (A x_p = r2) and the multipliers w come
+//   from A A^T. Other equalities take a penalty (H_xx + A^T A / rho, pattern fixed).
 // - A small static diagonal regularises H_xx. Each solve is refined by preconditioned
 //   conjugate gradients on the normal equations (applied matrix-free through the cones, the
 //   factor as preconditioner): near the optimum the matrix is so ill-conditioned that the
 //   factor is accurate only up to a few directions, which CG removes in a few steps. With
-//   equalities, an outer refinement on the unreduced system removes the penalty's effect.
+//   penalised equalities, an outer refinement on the unreduced system removes the penalty's
+//   effect.
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <memory>
 #include <vector>
 
 #include "solvers/socp/cone_program.h"
 #include "solvers/socp/cones.h"
+#include "solvers/socp/null_space.h"
 #include "solvers/socp/settings.h"
 #include "solvers/socp/split_cholesky.h"
 #include "solvers/socp/supernodal_cholesky.h"
@@ -81,6 +88,8 @@ class NormalEquations {
   double analyze_flops() const;  // CHOLMOD's flop count of one factorisation
   double factor_nonzeros() const;  // CHOLMOD's nnz(L)
   const KktTimers& timers() const { return timers_; }
+  // Whether the equalities are eliminated (null_space.h) rather than penalised.
+  bool eliminates_equalities() const { return elim_; }
 
  private:
   void build_pattern();
@@ -88,7 +97,8 @@ class NormalEquations {
   // (regularised, penalised equalities; w = -dy).
   void solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2, Eigen::VectorXd& dx,
                     double& dk, Eigen::VectorXd& w) const;
-  // (ox, ok) = (H + P + A^T A / rho) (dx, dk), matrix-free through the cones.
+  // (ox, ok) = (H + P + A^T A / rho) (dx, dk), matrix-free through the cones; with
+  // elimination Z^T (H + P) Z on the system's dofs.
   void apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const;
   // Preconditioned CG on that system until the residual (max norm) is below threshold;
   // returns the number of CG steps.
@@ -98,6 +108,11 @@ class NormalEquations {
   void solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc, const Eigen::VectorXd& re,
                        Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w, Eigen::VectorXd* dz, double threshold,
                        int& steps) const;
+
+  // (ox, ok) = (H + P) (dx, dk) on the program's dofs.
+  void apply_full(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const;
+  Eigen::VectorXd to_dofs(const Eigen::VectorXd& y) const;  // Z y (y itself without elimination)
+  void factor_aat();
 
   const ConeProgram& p_;
   const IpmSettings& settings_;
@@ -110,7 +125,18 @@ class NormalEquations {
   Eigen::VectorXd p_values_, ata_values_;  // constant parts, by nonzero
   Eigen::VectorXd slot_values_, cone_k_;   // per-iteration element contributions
   Eigen::SparseMatrix<double, Eigen::RowMajor> at_;  // A^T (dofs by equalities)
-  std::vector<int> perm_;                  // dof -> row of matrix_ (fill-reducing order)
+  std::vector<int> perm_;                  // system dof -> row of matrix_ (fill-reducing order)
+  // Elimination of the equalities: the basis, the system's size (y dofs, or num_x), the
+  // element pairs that spread over several nonzeros, and A A^T's factor.
+  BlockNullSpace null_space_;
+  bool elim_ = false;
+  int nsys_ = 0;
+  struct ExtraSlot {
+    int slot, target;
+    double coef;
+  };
+  std::vector<ExtraSlot> extra_;
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> aat_;
   std::unique_ptr<SupernodalCholesky> cholesky_;  // the whole matrix (small problems)
   std::unique_ptr<SplitCholesky> split_;          // or its halves in parallel (large ones)
   int split_sizes_[3] = {0, 0, 0};         // dofs of the halves and the separator

@@ -56,6 +56,8 @@ struct IpmSettings {
   // parametrization (docs/gparam.md) 1e-8 left the certified gap at ~1e-4 (ill-conditioned
   // Newton systems); 1e-1 reaches the 1e-8 gap (cow, fertility) with seams to ~1e-12.
   double equality_penalty = 1e-1;
+  // Equalities in vertex-block form are eliminated exactly instead (kkt.h, null_space.h).
+  bool eliminate_equalities = true;
   // Consecutive iterations with a step below min_step before giving up.
   double min_step = 1e-10;
   int max_small_steps = 3;
