@@ -22,13 +22,14 @@ LanczosResult lanczos_smallest(const HermitianCholesky& A, const Eigen::VectorXd
   for (int j = 0; j < max_steps; ++j) {
     Eigen::VectorXcd w = A.solve(m.cwiseProduct(V.col(j)));
     ++out.steps;
+    // The three-term recurrence (alpha_j real: T is M-self-adjoint), then one classical
+    // Gram-Schmidt pass against the whole basis ("twice is enough": the recurrence is the
+    // first pass, the full one keeps the basis orthogonal to rounding).
+    alpha.push_back(V.col(j).dot(m.cwiseProduct(w)).real());
+    w -= alpha.back() * V.col(j);
+    if (j > 0) w -= beta[j - 1] * V.col(j - 1);
     const auto basis = V.leftCols(j + 1);
-    // Classical Gram-Schmidt against the whole basis, twice ("twice is enough"); the first
-    // pass's coefficient on v_j is alpha_j (real: T is M-self-adjoint).
-    Eigen::VectorXcd c = basis.adjoint() * m.cwiseProduct(w);
-    alpha.push_back(c(j).real());
-    w.noalias() -= basis * c;
-    c = basis.adjoint() * m.cwiseProduct(w);
+    const Eigen::VectorXcd c = basis.adjoint() * m.cwiseProduct(w);
     w.noalias() -= basis * c;
     beta.push_back(m_norm(w));
     // The Ritz pair of the tridiagonal matrix's largest eigenvalue.
