@@ -164,6 +164,7 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   }
   const LanczosResult eigen = lanczos_smallest(cholesky, fr.area, x0, options.max_iterations, options.tolerance);
   out.timing.iterate_s = seconds_since(t0);
+  if (!eigen.vector.allFinite()) throw InputError("cross field: the eigenvector iteration gave non-finite values");
   out.iterations = eigen.steps;
   out.residual = eigen.residual;
   out.u = normalize_per_face(eigen.vector);
