@@ -8,6 +8,7 @@
 #include <numbers>
 #include <set>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "expect_input_error.h"
@@ -19,6 +20,7 @@
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/param/topology.h"
 #include "strictmin/problem/equality_basis.h"
+#include "strictmin/report/strict_order.h"
 #include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/seamless_problem.h"
 
@@ -85,6 +87,52 @@ TEST(Polycube, CubeFieldHasZeroEnergyAndEightConvexCorners) {
     const Eigen::Vector3d p = cube.V.row(x.vertex).transpose();
     for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::abs(p[k]) < 1e-12 || std::abs(p[k] - 5.0) < 1e-12) << p.transpose();
   }
+}
+
+// The smoothest field against a dense generalized eigensolver: the Hermitian form E is
+// recovered from field_energy alone by polarization (E(e_f), E(e_f + e_g), E(e_f + i e_g)),
+// its smallest eigenvector against M = diag(area) normalized per face must be our field up
+// to one global phase. On a bulged cube (curved: E has no zero-energy field).
+TEST(Field, SmoothestMatchesDenseEigenvector) {
+  Mesh m = make_cube_surface(3, 2.0);
+  const Eigen::RowVector3d c(1.0, 1.0, 1.0);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Eigen::RowVector3d d = m.V.row(v) - c;
+    m.V.row(v) = c + d * (0.6 + 0.4 * std::sqrt(3.0) / d.norm());  // between the cube and its sphere
+  }
+  const SurfaceGraph g = surface_graph(m);
+  const FaceFrames fr = face_frames(m, g);
+  const int F = g.num_faces;
+  using C = std::complex<double>;
+  Eigen::MatrixXcd H(F, F);
+  auto energy = [&](int f, C a, int h, C b) {
+    Eigen::VectorXcd u = Eigen::VectorXcd::Zero(F);
+    u(f) += a;
+    u(h) += b;
+    return field_energy(u, m, g, fr);
+  };
+  for (int f = 0; f < F; ++f) H(f, f) = energy(f, 1, f, 0);
+  for (int f = 0; f < F; ++f)
+    for (int h = f + 1; h < F; ++h) {
+      // E(e_f + b e_h) = H_ff + H_hh + 2 Re(b H_fh) for H_fh = e_f^H H e_h.
+      const double re = (energy(f, 1, h, 1) - H(f, f).real() - H(h, h).real()) / 2;
+      const double im = -(energy(f, 1, h, C(0, 1)) - H(f, f).real() - H(h, h).real()) / 2;
+      H(f, h) = C(re, im);
+      H(h, f) = std::conj(H(f, h));
+    }
+  const Eigen::MatrixXcd M = fr.area.cast<C>().asDiagonal();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXcd> dense(H, M);
+  ASSERT_EQ(dense.info(), Eigen::Success);
+  const Eigen::VectorXcd v = dense.eigenvectors().col(0);
+  ASSERT_GT(dense.eigenvalues()(1) - dense.eigenvalues()(0), 1e-3 * dense.eigenvalues()(1));  // a simple eigenvalue
+  const CrossField ours = smoothest_cross_field(m, g, fr);
+  EXPECT_LE(ours.residual, 1e-12);
+  EXPECT_NEAR(ours.energy / field_energy((v.array() / v.array().abs()).matrix(), m, g, fr), 1.0, 1e-9);
+  const C phase = ours.u(0) / (v(0) / std::abs(v(0)));
+  double worst = 0;
+  for (int f = 0; f < F; ++f) worst = std::max(worst, std::abs(ours.u(f) - phase * v(f) / std::abs(v(f))));
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(ours.iterations, 60);
 }
 
 TEST(Polycube, FrameHasEightConvexAndEightSaddleCorners) {
@@ -203,12 +251,21 @@ TEST(SharedMeshes, StrictOrderAndSeams) {
     const Mesh* m = small_closed_mesh(name);
     if (!m) GTEST_SKIP() << "no closed/" << name << ".obj under " << STRICTMIN_SHARED_DATA;
     std::map<Method, double> top;
+    std::map<Method, Eigen::VectorXd> distortion;
+    Eigen::VectorXd weights;
     for (Method method : {Method::L2, Method::Linf, Method::Relax}) {
       GParamOptions o;
       o.solver.method = method;
       o.solver.relax.sweeps = 10;
       const GParamOutcome g = global_parametrize(*m, o, name);
       top[method] = g.measured.stats.max;
+      distortion[method] = g.measured.distortion;
+      weights = g.problem.weights;
+      if (method == Method::Relax) {  // the sweeps' maxima, kept without a pass over the map, are the map's
+        ASSERT_FALSE(g.result.history.empty());
+        EXPECT_NEAR(g.result.history.back().max_distortion, g.result.distortion.maxCoeff(),
+                    1e-12 * g.result.distortion.maxCoeff());
+      }
       EXPECT_LT(g.seam_error, 1e-9) << name << " " << method_name(method);
       EXPECT_TRUE(g.measured.distortion.allFinite());
       EXPECT_EQ(g.result.status, SolveStatus::Solved) << name << " " << method_name(method) << ": " << g.result.message;
@@ -217,7 +274,13 @@ TEST(SharedMeshes, StrictOrderAndSeams) {
       }
     }
     EXPECT_LT(top[Method::Linf], top[Method::L2]) << name;
-    EXPECT_LE(top[Method::Relax], top[Method::Linf] + 1e-4) << name;
+    // A relax move never raises its ring's maximum (ring_order.h's acceptance, as the planar
+    // relax): the maximum stays linf's up to rounding, and at the planar tests' tie
+    // tolerance (1e-4 of the maximum) relax is less distorting than linf in the strict order.
+    EXPECT_LE(top[Method::Relax], top[Method::Linf] * (1 + 1e-12)) << name;
+    const StrictComparison c = compare_strict(distortion[Method::Relax], distortion[Method::Linf], weights,
+                                              1e-4 * top[Method::Linf]);
+    EXPECT_EQ(c.order, StrictOrder::Less) << name << ": " << describe(c, "relax", "linf");
   }
 }
 

@@ -1,15 +1,19 @@
 // The smoothest cross field (Knoeppel et al. 2013) and face frames (docs/gparam.md).
 #include "strictmin/field/cross_field.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCore>
 
+#include "field/hermitian_cholesky.h"
+#include "field/lanczos.h"
 #include "strictmin/io/input_error.h"
-#include "strictmin/solvers/sparse_cholesky.h"
+#include "strictmin/solvers/timing.h"
 #include "solvers/serial_cholmod_scope.h"
 
 namespace strictmin {
@@ -24,40 +28,70 @@ double edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr
   return 3.0 * len2 / (fr.area(g.edge_faces(e, 0)) + fr.area(g.edge_faces(e, 1)));
 }
 
-// Adds the complex entry c at (i, j) of a Hermitian matrix as its real 2x2 block
-// [[Re c, -Im c], [Im c, Re c]] (unknowns interleaved: 2f = Re u_f, 2f+1 = Im u_f).
-void add_block(std::vector<Eigen::Triplet<double>>& t, int i, int j, Complex c) {
-  t.emplace_back(2 * i, 2 * j, c.real());
-  t.emplace_back(2 * i, 2 * j + 1, -c.imag());
-  t.emplace_back(2 * i + 1, 2 * j, c.imag());
-  t.emplace_back(2 * i + 1, 2 * j + 1, c.real());
-}
-
-// E as a real symmetric 2F by 2F matrix (see the header).
-Eigen::SparseMatrix<double> energy_matrix(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr) {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<size_t>(g.num_edges()) * 16);
-  for (int e = 0; e < g.num_edges(); ++e) {
+// E + D (D diagonal) as a complex F by F Hermitian matrix, lower triangle (see the header): per edge
+// w (|u_f|^2 + |u_h|^2) on the diagonal and -w rho at (h, f) (-w conj(rho) at (f, h)).
+HermitianLower hermitian_energy(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
+                                const Eigen::VectorXd& diagonal) {
+  const int F = g.num_faces, E = g.num_edges();
+  HermitianLower A;
+  A.n = F;
+  A.start.assign(F + 1, 0);
+  for (int e = 0; e < E; ++e) ++A.start[std::min(g.edge_faces(e, 0), g.edge_faces(e, 1)) + 1];
+  for (int f = 0; f < F; ++f) A.start[f + 1] += A.start[f] + 1;  // + 1: the diagonal
+  A.row.resize(A.start[F]);
+  A.value.assign(A.start[F], Complex(0, 0));
+  std::vector<int> next(A.start.begin(), A.start.end() - 1);
+  for (int f = 0; f < F; ++f) {
+    A.row[next[f]] = f;
+    A.value[next[f]++] = diagonal(f);
+  }
+  for (int e = 0; e < E; ++e) {
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
     const double w = edge_weight(mesh, g, fr, e);
     const Complex rho = std::polar(1.0, 4.0 * fr.transport(e));
-    // w |u_h - rho u_f|^2 = w (|u_h|^2 + |u_f|^2 - 2 Re(conj(u_h) rho u_f))
-    add_block(t, f, f, w);
-    add_block(t, h, h, w);
-    add_block(t, h, f, -w * rho);
-    add_block(t, f, h, -w * std::conj(rho));
+    A.value[A.start[f]] += w;
+    A.value[A.start[h]] += w;
+    const int col = std::min(f, h), k = next[col]++;
+    A.row[k] = std::max(f, h);
+    A.value[k] = h > f ? -w * rho : -w * std::conj(rho);
   }
-  Eigen::SparseMatrix<double> A(2 * g.num_faces, 2 * g.num_faces);
-  A.setFromTriplets(t.begin(), t.end());
+  // Rows sorted within each column (the diagonal stays first), duplicates (two faces that
+  // share two edges) summed.
+  std::vector<int> start(F + 1, 0), row;
+  std::vector<Complex> value;
+  row.reserve(A.row.size());
+  value.reserve(A.row.size());
+  std::vector<std::pair<int, Complex>> column;
+  for (int f = 0; f < F; ++f) {
+    column.clear();
+    for (int k = A.start[f]; k < A.start[f + 1]; ++k) column.emplace_back(A.row[k], A.value[k]);
+    std::sort(column.begin(), column.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [r, v] : column) {
+      if (!row.empty() && static_cast<int>(row.size()) > start[f] && row.back() == r) {
+        value.back() += v;
+      } else {
+        row.push_back(r);
+        value.push_back(v);
+      }
+    }
+    start[f + 1] = static_cast<int>(row.size());
+  }
+  A.start.swap(start);
+  A.row.swap(row);
+  A.value.swap(value);
   return A;
 }
 
-void normalize_per_face(const Eigen::VectorXd& x, Eigen::VectorXcd& u) {
-  u.resize(x.size() / 2);
-  for (Eigen::Index f = 0; f < u.size(); ++f) {
-    const Complex z(x(2 * f), x(2 * f + 1));
-    u(f) = std::abs(z) > 0 ? z / std::abs(z) : Complex(1, 0);
-  }
+double trace(const HermitianLower& A) {
+  double sum = 0;
+  for (int f = 0; f < A.n; ++f) sum += A.value[A.start[f]].real();  // the diagonal is first
+  return sum;
+}
+
+Eigen::VectorXcd normalize_per_face(const Eigen::VectorXcd& x) {
+  Eigen::VectorXcd u(x.size());
+  for (Eigen::Index f = 0; f < x.size(); ++f) u(f) = std::abs(x(f)) > 0 ? x(f) / std::abs(x(f)) : Complex(1, 0);
+  return u;
 }
 
 // Multiplies the field by the global phase that gives face `f` the direction d.
@@ -107,36 +141,33 @@ double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGr
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
                                  const CrossFieldOptions& options) {
   const int F = g.num_faces;
-  const Eigen::SparseMatrix<double> A = energy_matrix(mesh, g, fr);
-  Eigen::VectorXd mass(2 * F);
-  for (int f = 0; f < F; ++f) mass(2 * f) = mass(2 * f + 1) = fr.area(f);
-  // Shift: A may be singular (a zero-energy field exists, e.g. on a polycube).
-  const double eps = 1e-8 * A.diagonal().sum() / mass.sum();
-  Eigen::SparseMatrix<double> S = A;
-  for (int i = 0; i < 2 * F; ++i) S.coeffRef(i, i) += eps * mass(i);
-  SerialCholmodScope serial;
-  SparseCholesky cholesky(true);  // AMD: as good as METIS here and much faster to compute
-  cholesky.analyze(S);
+  auto t0 = std::chrono::steady_clock::now();
+  HermitianLower A = hermitian_energy(mesh, g, fr, Eigen::VectorXd::Zero(F));
+  // Shift: E may be singular (a zero-energy field exists, e.g. on a polycube).
+  const double eps = 1e-8 * trace(A) / fr.area.sum();
+  for (int f = 0; f < F; ++f) A.value[A.start[f]] += eps * fr.area(f);
   CrossField out;
-  if (!cholesky.factorize(S)) throw InputError("cross field: the connection Laplacian could not be factorized");
-
+  out.timing.assemble_s = seconds_since(t0);
+  SerialCholmodScope serial;
+  HermitianCholesky cholesky;
+  if (!cholesky.factorize(A)) throw InputError("cross field: the connection Laplacian could not be factorized");
+  out.timing.analyze_s = cholesky.analyze_s;
+  out.timing.factorize_s = cholesky.factorize_s;
+  t0 = std::chrono::steady_clock::now();
+  // A fixed pseudo-random start: the field's global phase is that of its projection.
   std::mt19937 random(12345);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  Eigen::VectorXd x(2 * F);
-  for (int i = 0; i < 2 * F; ++i) x(i) = uniform(random);
-  auto m_normalize = [&](Eigen::VectorXd& v) { v /= std::sqrt(v.dot(mass.cwiseProduct(v))); };
-  m_normalize(x);
-  // The real operator acts on the complex eigenvector's plane {x, ix} as a real scalar, so
-  // the iterates settle without turning: stop when one moves by less than the tolerance.
-  for (int it = 1; it <= options.max_iterations; ++it) {
-    Eigen::VectorXd next = cholesky.solve(mass.cwiseProduct(x));
-    m_normalize(next);
-    const Eigen::VectorXd change = next - x;
-    x.swap(next);
-    out.iterations = it;
-    if (std::sqrt(change.dot(mass.cwiseProduct(change))) <= options.tolerance) break;
+  Eigen::VectorXcd x0(F);
+  for (int f = 0; f < F; ++f) {
+    const double re = uniform(random);
+    x0(f) = Complex(re, uniform(random));
   }
-  normalize_per_face(x, out.u);
+  const LanczosResult eigen = lanczos_smallest(cholesky, fr.area, x0, options.max_iterations, options.tolerance);
+  out.timing.iterate_s = seconds_since(t0);
+  if (!eigen.vector.allFinite()) throw InputError("cross field: the eigenvector iteration gave non-finite values");
+  out.iterations = eigen.steps;
+  out.residual = eigen.residual;
+  out.u = normalize_per_face(eigen.vector);
   if (options.pin_face >= 0 && options.pin_face < F) pin_phase(out.u, options.pin_face, options.pin_direction, fr);
   out.energy = field_energy(out.u, mesh, g, fr);
   return out;
@@ -169,23 +200,19 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   for (int f = 0; f < F; ++f) mean += fr.area(f) * std::abs(q(f));
   mean /= fr.area.sum();
   if (mean > 0) q /= mean;
-  const Eigen::SparseMatrix<double> A = energy_matrix(mesh, g, fr);
-  Eigen::VectorXd mass(2 * F), rhs(2 * F);
-  for (int f = 0; f < F; ++f) mass(2 * f) = mass(2 * f + 1) = fr.area(f);
-  const double s = alignment * A.diagonal().sum() / mass.sum();
-  Eigen::SparseMatrix<double> S = A;
-  for (int i = 0; i < 2 * F; ++i) S.coeffRef(i, i) += s * mass(i);
-  for (int f = 0; f < F; ++f) {
-    rhs(2 * f) = s * fr.area(f) * q(f).real();
-    rhs(2 * f + 1) = s * fr.area(f) * q(f).imag();
-  }
-  SerialCholmodScope serial;
-  SparseCholesky cholesky(true);
-  cholesky.analyze(S);
-  if (!cholesky.factorize(S)) throw InputError("cross field: the curvature system could not be factorized");
-  const Eigen::VectorXd x = cholesky.solve(rhs).col(0);
+  const auto t0 = std::chrono::steady_clock::now();
+  HermitianLower A = hermitian_energy(mesh, g, fr, Eigen::VectorXd::Zero(F));
+  const double s = alignment * trace(A) / fr.area.sum();
+  for (int f = 0; f < F; ++f) A.value[A.start[f]] += s * fr.area(f);
+  const Eigen::VectorXcd rhs = s * fr.area.cast<Complex>().cwiseProduct(q);
   CrossField out;
-  normalize_per_face(x, out.u);
+  out.timing.assemble_s = seconds_since(t0);
+  SerialCholmodScope serial;
+  HermitianCholesky cholesky;
+  if (!cholesky.factorize(A)) throw InputError("cross field: the curvature system could not be factorized");
+  out.timing.analyze_s = cholesky.analyze_s;
+  out.timing.factorize_s = cholesky.factorize_s;
+  out.u = normalize_per_face(cholesky.solve(rhs));
   out.iterations = 1;
   out.energy = field_energy(out.u, mesh, g, fr);
   return out;

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <optional>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/param/topology.h"
@@ -38,7 +42,11 @@ int SurfaceGraph::neighbour(int f, int i) const {
   return edge_faces(e, 0) == f && edge_sides(e, 0) == i ? edge_faces(e, 1) : edge_faces(e, 0);
 }
 
-SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source) {
+namespace {
+
+// The checked construction: every defect is reported with its element, in the order the
+// checks run (used when the fast construction below meets any defect).
+SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source) {
   check_closed_manifold(mesh, source);
   SurfaceGraph g;
   g.num_vertices = mesh.num_vertices();
@@ -107,6 +115,120 @@ SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source) {
     }
   }
   return g;
+}
+
+
+// Fans from face_edges / edge_faces: from any face of v, the next face counter-clockwise
+// lies across the side that ends at v (side (i + 2) % 3 for the corner i of v). False when a
+// walk closes before it has seen every face of v (several fans: a non-manifold vertex).
+bool build_fans(const Mesh& mesh, SurfaceGraph& g) {
+  const int V = g.num_vertices, F = g.num_faces;
+  std::vector<int> first_face(V, -1), first_corner(V, -1);
+  g.fan_start.assign(V + 1, 0);
+  for (int f = F - 1; f >= 0; --f)
+    for (int i = 2; i >= 0; --i) {
+      const int v = mesh.F(f, i);
+      ++g.fan_start[v + 1];
+      first_face[v] = f;
+      first_corner[v] = i;
+    }
+  for (int v = 0; v < V; ++v) {
+    if (g.fan_start[v + 1] == 0) return false;  // a vertex in no face
+    g.fan_start[v + 1] += g.fan_start[v];
+  }
+  g.fan_faces.resize(g.fan_start.back());
+  g.fan_corners.resize(g.fan_start.back());
+  for (int v = 0; v < V; ++v) {
+    int f = first_face[v], i = first_corner[v];
+    for (int k = g.fan_start[v]; k < g.fan_start[v + 1]; ++k) {
+      if (k > g.fan_start[v] && f == first_face[v]) return false;
+      g.fan_faces[k] = f;
+      g.fan_corners[k] = i;
+      f = g.neighbour(f, (i + 2) % 3);
+      i = mesh.F(f, 0) == v ? 0 : mesh.F(f, 1) == v ? 1 : 2;
+    }
+    if (f != first_face[v]) return false;
+  }
+  return true;
+}
+
+// One component: every face reached from face 0 across edges.
+bool connected(const SurfaceGraph& g) {
+  std::vector<char> seen(g.num_faces, 0);
+  std::vector<int> stack{0};
+  seen[0] = 1;
+  int count = 1;
+  while (!stack.empty()) {
+    const int f = stack.back();
+    stack.pop_back();
+    for (int i = 0; i < 3; ++i)
+      if (const int h = g.neighbour(f, i); !seen[h]) {
+        seen[h] = 1;
+        ++count;
+        stack.push_back(h);
+      }
+  }
+  return count == g.num_faces;
+}
+
+// The fast construction: half-edges sorted by their undirected edge; every edge must have
+// exactly two, one each way. Edges are numbered in order of first appearance (face by face,
+// side by side), as the checked construction numbers them. Null at the first defect.
+std::optional<SurfaceGraph> sorted_surface_graph(const Mesh& mesh) {
+  if (mesh.element_type() != ElementType::Triangle || mesh.dim() != 3 || mesh.num_elements() == 0) return std::nullopt;
+  SurfaceGraph g;
+  g.num_vertices = mesh.num_vertices();
+  g.num_faces = mesh.num_elements();
+  const int F = g.num_faces, H = 3 * F;
+  std::vector<std::pair<uint64_t, int>> half(H);  // (undirected key, half-edge 3 f + i)
+  for (int f = 0; f < F; ++f)
+    for (int i = 0; i < 3; ++i) {
+      const uint64_t a = static_cast<uint32_t>(mesh.F(f, i)), b = static_cast<uint32_t>(mesh.F(f, (i + 1) % 3));
+      half[3 * f + i] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + i};
+    }
+  std::sort(half.begin(), half.end());
+  if (H % 2) return std::nullopt;
+  std::vector<int> twin(H);
+  for (int k = 0; k < H; k += 2) {
+    if (half[k].first != half[k + 1].first || (k + 2 < H && half[k + 2].first == half[k].first)) return std::nullopt;
+    twin[half[k].second] = half[k + 1].second;
+    twin[half[k + 1].second] = half[k].second;
+  }
+  const int E = H / 2;
+  g.face_edges.resize(F, 3);
+  g.edges.resize(E, 2);
+  g.edge_faces.resize(E, 2);
+  g.edge_sides.resize(E, 2);
+  int next = 0;
+  for (int h = 0; h < H; ++h) {
+    const int t = twin[h];
+    if (t < h) {
+      g.face_edges(h / 3, h % 3) = g.face_edges(t / 3, t % 3);
+      continue;
+    }
+    const int e = next++, f = h / 3, i = h % 3;
+    const int a = mesh.F(f, i), b = mesh.F(f, (i + 1) % 3);
+    const int ta = mesh.F(t / 3, t % 3);
+    if (ta == a) return std::nullopt;  // both faces run through the edge the same way
+    g.face_edges(f, i) = e;
+    g.edges(e, 0) = std::min(a, b);
+    g.edges(e, 1) = std::max(a, b);
+    const int k = a < b ? 0 : 1;  // edge_faces(e, 0) runs from the smaller end to the larger
+    g.edge_faces(e, k) = f;
+    g.edge_sides(e, k) = i;
+    g.edge_faces(e, 1 - k) = t / 3;
+    g.edge_sides(e, 1 - k) = t % 3;
+  }
+  if (!build_fans(mesh, g) || !connected(g)) return std::nullopt;
+  return g;
+}
+
+}  // namespace
+
+SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source) {
+  if (std::optional<SurfaceGraph> g = sorted_surface_graph(mesh)) return std::move(*g);
+  SurfaceGraph checked = checked_surface_graph(mesh, source);  // throws, naming the defect
+  return checked;
 }
 
 }  // namespace strictmin

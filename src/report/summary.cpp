@@ -156,7 +156,9 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   add_status_summary(s, g.result);
   add_solver_summary(s, o.solver, g.result);
   if (o.measure != Measure::FieldDeviation) add_local_global_summary(s, g.result);
+  s["graph_time_s"] = g.graph_time_s;
   s["field_time_s"] = g.field_time_s;
+  s["field_iterations"] = g.field.iterations;
   s["cut_time_s"] = g.cut_time_s;
   s["solver_time_s"] = g.solve_time_s;
   return s;

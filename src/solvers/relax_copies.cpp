@@ -1,137 +1,253 @@
 // Relaxation (paper Algorithm 3) on a problem whose points have copies related by the
 // seams' transitions (Problem::copy_base; docs/gparam.md, "relax with seams"). A group (the
-// copies of one surface vertex) moves as one point q: copy v is R_v q + t_v with t_v held,
-// so each element T of the group's ring still has D_T^2 = a_T ||q - R_v^T (c_T - t_v)||^2 + b_T
-// and the 1-ring problem is the planar one (one_ring.h). Moving a group keeps every
-// equality: every transition's translation is unchanged.
+// copies of one surface vertex) moves as one point: when its base moves by delta, copy v
+// moves by R_v delta (t_v held), so each element T of the group's ring has
+// J_T - R_T = D_T + (R_v delta) g^T and D_T^2 = ||R_v^T D_T + delta g^T||^2, the planar
+// 1-ring term (one_ring.h). Moving a group keeps every equality: every transition's
+// translation is unchanged.
+//
+// As the planar sweep (relax_sweep.cpp): every element's D_T = J_T - R_T is kept up to date
+// as groups move (recomputed from the positions every kRefreshInterval sweeps), each ring
+// solve starts from the previous solve's support, a move is taken only if it lowers the
+// ring's maximum and improves the ring in the area-weighted strict order (ring_order.h), and
+// the sweep's maximum comes from the elements' final values, without a pass over the map.
 #include "relax_copies.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
-#include <functional>
+#include <cmath>
+#include <memory>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
+#include "ring_order.h"
+#include "relax_sweep.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/interrupt.h"
-#include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/one_ring.h"
 #include "strictmin/solvers/vertex_colouring.h"
 
 namespace strictmin::relax_detail {
 namespace {
 
+using Vec2 = Eigen::Vector2d;
+using Mat2 = Eigen::Matrix2d;
+
+// A move must lower the ring's maximum squared distortion by at least this much (relative),
+// as in the planar sweep.
+constexpr double kAcceptRelative = 1e-13;
+constexpr uint32_t kNoGuess = 0xffffffffu;
+
+// One element of a group's ring, packed for the sweep: the corner's gradient g, 1 / |g|^2
+// and the copy's rotation R_v (column-major).
 struct RingEntry {
-  int element, corner, copy;
+  int element = 0;
+  bool last = false;  // of the element's moving groups, this one moves last in a sweep
+  double g[2] = {0, 0}, inv_a = 0, R[4] = {1, 0, 0, 1};
+};
+
+// A member copy of a group and its rotation.
+struct Member {
+  int vertex = 0;
+  double R[4] = {1, 0, 0, 1};
 };
 
 struct Groups {
   std::vector<int> order;                  // group bases, colour by colour
   std::vector<int> colour_offsets;
-  std::vector<std::vector<int>> members;   // per position in order
-  std::vector<std::vector<RingEntry>> ring;
+  std::vector<int> member_start;           // per position in order
+  std::vector<Member> members;
+  std::vector<int> ring_start;
+  std::vector<RingEntry> ring;
+  std::vector<int> closed;                 // elements no moving group touches
+  int max_ring = 0;
+  // Per position: the support of the last ring solve (term indices, a byte each, 0xff =
+  // none), the next solve's first guess.
+  std::unique_ptr<std::atomic<uint32_t>[]> guesses;
+  // The moving groups at each element's corners (position in order, -1 for none), and per
+  // position whether a neighbour moved since the group's last solve: a group whose ring did
+  // not change would solve the same problem again and stay, so it is skipped.
+  std::vector<int> element_groups;
+  std::unique_ptr<std::atomic<uint8_t>[]> dirty;
 };
 
-// Groups that may move: every copy free and the group's transitions closing (base >= 0).
-Groups make_groups(const Problem& p) {
-  const int V = p.num_vertices, c = p.corners();
-  std::vector<char> held(V, 0);
-  for (int v = 0; v < V; ++v) {
-    const int b = p.copy_base[v] >= 0 ? p.copy_base[v] : v;
-    if (p.copy_base[v] < 0 || p.fixed[v]) held[b] = 1;
-  }
-  Eigen::MatrixXi grouped(p.num_elements(), c);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int j = 0; j < c; ++j) {
-      const int v = p.elements(e, j);
-      grouped(e, j) = p.copy_base[v] >= 0 ? p.copy_base[v] : v;
-    }
-  const VertexColouring col = colour_free_vertices(grouped, held);
-  Groups g;
-  g.order = col.order;
-  g.colour_offsets = col.offsets;
-  std::vector<int> position(V, -1);
-  for (size_t i = 0; i < g.order.size(); ++i) position[g.order[i]] = static_cast<int>(i);
-  g.members.resize(g.order.size());
-  g.ring.resize(g.order.size());
-  for (int v = 0; v < V; ++v)
-    if (p.copy_base[v] >= 0 && position[p.copy_base[v]] >= 0) g.members[position[p.copy_base[v]]].push_back(v);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int j = 0; j < c; ++j) {
-      const int v = p.elements(e, j);
-      if (p.copy_base[v] >= 0 && position[p.copy_base[v]] >= 0) g.ring[position[p.copy_base[v]]].push_back({e, j, v});
-    }
-  return g;
-}
+Vec2 gradient(const Problem& p, int e, int j) { return Vec2(p.gradients(e * 3 + j, 0), p.gradients(e * 3 + j, 1)); }
 
-// True when `after` is below `before` in the strict order, values within tol counting equal.
-// Sorts both in place.
-bool strictly_better(std::vector<double>& before, std::vector<double>& after, double tol) {
-  if (*std::max_element(after.begin(), after.end()) < *std::max_element(before.begin(), before.end()) - tol) return true;
-  std::sort(before.rbegin(), before.rend());
-  std::sort(after.rbegin(), after.rend());
-  for (size_t i = 0; i < before.size(); ++i) {
-    if (after[i] < before[i] - tol) return true;
-    if (after[i] > before[i] + tol) return false;
-  }
-  return false;
-}
-
-Eigen::Matrix2d jacobian2(const Problem& p, int e, const Eigen::MatrixXd& X) {
-  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    const int v = p.elements(e, k);
-    J.noalias() += Eigen::Vector2d(X(v, 0), X(v, 1)) * Eigen::RowVector2d(p.gradients(e * 3 + k, 0), p.gradients(e * 3 + k, 1));
-  }
-  return J;
-}
-
-Eigen::Matrix2d target2(const Problem& p, int e) {
-  Eigen::Matrix2d R;
-  R << p.targets(2 * e, 0), p.targets(2 * e, 1), p.targets(2 * e + 1, 0), p.targets(2 * e + 1, 1);
-  return R;
-}
-
-Eigen::Matrix2d rotation2(const Problem& p, int v) {
-  Eigen::Matrix2d R;
+Mat2 rotation(const Problem& p, int v) {
+  Mat2 R;
   R << p.copy_rotation(2 * v, 0), p.copy_rotation(2 * v, 1), p.copy_rotation(2 * v + 1, 0), p.copy_rotation(2 * v + 1, 1);
   return R;
 }
 
-// One group's 1-ring move; returns how far its base moved.
-double move_group(const Problem& p, const Groups& g, size_t i, double accept_tolerance, Eigen::MatrixXd& X) {
-  thread_local std::vector<RingTerm<2>> terms;
-  thread_local std::vector<double> before, after;
-  const int base = g.order[i];
-  const Eigen::Vector2d q0(X(base, 0), X(base, 1));
-  const auto& ring = g.ring[i];
-  terms.resize(ring.size());
-  before.resize(ring.size());
-  after.resize(ring.size());
-  for (size_t k = 0; k < ring.size(); ++k) {
-    const auto [e, j, v] = ring[k];
-    const Eigen::Matrix2d Rv = rotation2(p, v);
-    const Eigen::Vector2d xv(X(v, 0), X(v, 1));
-    const Eigen::Vector2d tv = xv - Rv * q0;
-    const Eigen::Matrix2d D = jacobian2(p, e, X) - target2(p, e);
-    const Eigen::Vector2d gj(p.gradients(e * 3 + j, 0), p.gradients(e * 3 + j, 1));
-    before[k] = D.norm();
-    // J - R_T = M + (R_v q + t_v) g^T with M the other corners' part; ||.|| = ||R_v^T (M + t_v g^T) + q g^T||.
-    const Eigen::Matrix2d M = D - (xv - tv) * gj.transpose();
-    terms[k] = ring_term<2>(Rv.transpose() * M, gj, 1.0 / gj.squaredNorm());
+int base_of(const Problem& p, int v) { return p.copy_base[v] >= 0 ? p.copy_base[v] : v; }
+
+// Groups that may move: every copy free and the group's transitions closing (base >= 0).
+Groups make_groups(const Problem& p) {
+  const int V = p.num_vertices, c = p.corners(), E = p.num_elements();
+  std::vector<char> held(V, 0);
+  for (int v = 0; v < V; ++v)
+    if (p.copy_base[v] < 0 || p.fixed[v]) held[base_of(p, v)] = 1;
+  Eigen::MatrixXi grouped(E, c);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) grouped(e, j) = base_of(p, p.elements(e, j));
+  const VertexColouring col = colour_free_vertices(grouped, held);
+  Groups g;
+  g.order = col.order;
+  g.colour_offsets = col.offsets;
+  const int n = static_cast<int>(g.order.size());
+  std::vector<int> position(V, -1);
+  for (int i = 0; i < n; ++i) position[g.order[i]] = i;
+  auto group_of = [&](int v) { return p.copy_base[v] >= 0 ? position[p.copy_base[v]] : -1; };
+  // Members and rings in CSR form, by position.
+  g.member_start.assign(n + 1, 0);
+  for (int v = 0; v < V; ++v)
+    if (group_of(v) >= 0) ++g.member_start[group_of(v) + 1];
+  for (int i = 0; i < n; ++i) g.member_start[i + 1] += g.member_start[i];
+  g.members.resize(g.member_start[n]);
+  std::vector<int> fill(g.member_start.begin(), g.member_start.end() - 1);
+  for (int v = 0; v < V; ++v)
+    if (group_of(v) >= 0) {
+      Member& m = g.members[fill[group_of(v)]++];
+      m.vertex = v;
+      Eigen::Map<Mat2>(m.R) = rotation(p, v);
+    }
+  std::vector<int> last_colour(E, -1);
+  g.ring_start.assign(n + 1, 0);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j)
+      if (const int i = group_of(p.elements(e, j)); i >= 0) {
+        ++g.ring_start[i + 1];
+        last_colour[e] = std::max(last_colour[e], col.colour[g.order[i]]);
+      }
+  for (int i = 0; i < n; ++i) g.ring_start[i + 1] += g.ring_start[i];
+  g.ring.resize(g.ring_start[n]);
+  fill.assign(g.ring_start.begin(), g.ring_start.end() - 1);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) {
+      const int v = p.elements(e, j), i = group_of(v);
+      if (i < 0) continue;
+      RingEntry& r = g.ring[fill[i]++];
+      r.element = e;
+      r.last = col.colour[g.order[i]] == last_colour[e];
+      r.g[0] = p.gradients(e * c + j, 0);
+      r.g[1] = p.gradients(e * c + j, 1);
+      r.inv_a = 1.0 / (r.g[0] * r.g[0] + r.g[1] * r.g[1]);
+      Eigen::Map<Mat2>(r.R) = rotation(p, v);
+    }
+  for (int e = 0; e < E; ++e)
+    if (last_colour[e] < 0) g.closed.push_back(e);
+  for (int i = 0; i < n; ++i) g.max_ring = std::max(g.max_ring, g.ring_start[i + 1] - g.ring_start[i]);
+  g.guesses = std::make_unique<std::atomic<uint32_t>[]>(n);
+  g.dirty = std::make_unique<std::atomic<uint8_t>[]>(n);
+  for (int i = 0; i < n; ++i) {
+    g.guesses[i].store(kNoGuess, std::memory_order_relaxed);
+    g.dirty[i].store(1, std::memory_order_relaxed);
   }
-  const RingSolution<2> s = solve_one_ring<2>(terms.data(), static_cast<int>(terms.size()));
-  const double ring_max = *std::max_element(before.begin(), before.end());
-  for (size_t k = 0; k < ring.size(); ++k)
-    after[k] = std::sqrt(std::max(0.0, terms[k].a * (s.q - terms[k].centre).squaredNorm() + terms[k].b));
-  if (!s.q.allFinite() || !strictly_better(before, after, accept_tolerance * ring_max)) return 0;
-  for (int v : g.members[i]) {
-    const Eigen::Vector2d d = rotation2(p, v) * (s.q - q0);
-    X(v, 0) += d(0);
-    X(v, 1) += d(1);
+  g.element_groups.resize(static_cast<size_t>(E) * c);
+  for (int e = 0; e < E; ++e)
+    for (int j = 0; j < c; ++j) g.element_groups[e * c + j] = group_of(p.elements(e, j));
+  return g;
+}
+
+// D_T = J_T - R_T of every element for the map X.
+void compute_deviations(const Problem& p, const Eigen::MatrixXd& X, std::vector<Mat2>& D) {
+  D.resize(p.num_elements());
+  tbb::parallel_for(tbb::blocked_range<int>(0, p.num_elements(), 2048), [&](const tbb::blocked_range<int>& r) {
+    for (int e = r.begin(); e != r.end(); ++e) {
+      Mat2 M;
+      M << -p.targets(2 * e, 0), -p.targets(2 * e, 1), -p.targets(2 * e + 1, 0), -p.targets(2 * e + 1, 1);
+      for (int k = 0; k < 3; ++k) M.noalias() += X.row(p.elements(e, k)).transpose().head<2>() * gradient(p, e, k).transpose();
+      D[e] = M;
+    }
+  });
+}
+
+struct Scratch {
+  std::vector<RingTerm<2>> terms;
+  std::vector<double> current, before, after, area;
+  std::vector<int> order;
+};
+
+struct Accumulator {
+  double move = 0;  // largest move
+  double top = 0;   // largest D_T^2 after the sweep over the elements seen so far
+};
+
+// The planar sweep's acceptance (relax_sweep.cpp, accept_move): the ring maximum must go
+// down, and either its top level drops by more than tau = tolerance * (ring maximum) or the
+// ring improves in the area-weighted strict order with values within tau equal.
+bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, const Vec2& q, double value,
+            double current, double tolerance) {
+  if (!(value < current * (1 - kAcceptRelative))) return false;
+  const double top = std::sqrt(current), tau = tolerance * top;
+  if (value < (top - tau) * (top - tau)) return true;
+  for (int k = 0; k < n; ++k) {
+    const RingTerm<2>& t = sc.terms[k];
+    sc.after[k] = std::sqrt(t.a * (q - t.centre).squaredNorm() + t.b);
+    sc.before[k] = std::sqrt(sc.current[k]);
+    sc.area[k] = p.weights(g.ring[first + k].element);
   }
-  return (s.q - q0).norm();
+  return ring_improves(sc.before.data(), sc.after.data(), sc.area.data(), n, tau, sc.order.data());
+}
+
+// One group's 1-ring move, updating X and D; accumulates the move and the final values of
+// the elements it is last to touch.
+void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
+                std::vector<Mat2>& D, Accumulator& acc) {
+  const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
+  if (!g.dirty[i].exchange(0, std::memory_order_relaxed)) {
+    for (int k = 0; k < n; ++k)
+      if (g.ring[first + k].last) acc.top = std::max(acc.top, D[g.ring[first + k].element].squaredNorm());
+    return;
+  }
+  double current = 0;
+  for (int k = 0; k < n; ++k) {
+    const RingEntry& r = g.ring[first + k];
+    const Mat2& Dk = D[r.element];
+    sc.terms[k] = ring_term<2>(Eigen::Map<const Mat2>(r.R).transpose() * Dk, Eigen::Map<const Vec2>(r.g), r.inv_a);
+    sc.current[k] = Dk.squaredNorm();
+    current = std::max(current, sc.current[k]);
+  }
+  bool moved = false;
+  Vec2 q = Vec2::Zero();
+  if (current > 0) {
+    int guess[3], guess_size = 0;
+    const uint32_t packed = g.guesses[i].load(std::memory_order_relaxed);
+    for (int s = 0; s < 3 && ((packed >> (8 * s)) & 0xff) != 0xff; ++s) guess[guess_size++] = static_cast<int>((packed >> (8 * s)) & 0xff);
+    const RingSolution<2> sol = solve_one_ring<2>(sc.terms.data(), n, guess, guess_size);
+    uint32_t support = kNoGuess;
+    if (n < 0xff)
+      for (int s = 0; s < sol.active; ++s)
+        support = (support & ~(0xffu << (8 * s))) | static_cast<uint32_t>(sol.support[s]) << (8 * s);
+    g.guesses[i].store(support, std::memory_order_relaxed);
+    if (sol.q.allFinite() && accept(p, g, sc, first, n, sol.q, sol.value, current, tolerance)) {
+      moved = true;
+      q = sol.q;
+      for (int m = g.member_start[i]; m < g.member_start[i + 1]; ++m) {
+        const Member& member = g.members[m];
+        const Vec2 d = Eigen::Map<const Mat2>(member.R) * q;
+        X(member.vertex, 0) += d(0);
+        X(member.vertex, 1) += d(1);
+      }
+      for (int k = 0; k < n; ++k) {  // the ring's deviations follow the move; the neighbours must look again
+        const RingEntry& r = g.ring[first + k];
+        D[r.element].noalias() += (Eigen::Map<const Mat2>(r.R) * q) * Eigen::Map<const Vec2>(r.g).transpose();
+        for (int c = 0; c < 3; ++c)
+          if (const int j = g.element_groups[r.element * 3 + c]; j >= 0 && j != i) g.dirty[j].store(1, std::memory_order_relaxed);
+      }
+      acc.move = std::max(acc.move, q.norm());
+    }
+  }
+  for (int k = 0; k < n; ++k)
+    if (g.ring[first + k].last) {
+      const RingTerm<2>& t = sc.terms[k];
+      acc.top = std::max(acc.top, moved ? t.a * (q - t.centre).squaredNorm() + t.b : sc.current[k]);
+    }
 }
 
 }  // namespace
@@ -142,22 +258,43 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
   const Groups g = make_groups(p);
   Result result;
   Eigen::MatrixXd X = initial;
+  std::vector<Mat2> D;
+  int age = -1;  // sweeps since D was computed from X
+  tbb::enumerable_thread_specific<Scratch> scratch([&] {
+    Scratch sc;
+    sc.terms.resize(g.max_ring);
+    for (auto* v : {&sc.current, &sc.before, &sc.after, &sc.area}) v->resize(g.max_ring);
+    sc.order.resize(2 * g.max_ring);
+    return sc;
+  });
+  const auto join = [](Accumulator x, const Accumulator& y) {
+    x.move = std::max(x.move, y.move);
+    x.top = std::max(x.top, y.top);
+    return x;
+  };
   const int colours = static_cast<int>(g.colour_offsets.size()) - 1;
   bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {
     check_interrupt();  // solvers/interrupt.h
-    double move = 0;
-    for (int c = 0; c < colours; ++c) {
-      std::vector<double> moved(g.colour_offsets[c + 1] - g.colour_offsets[c], 0.0);
-      tbb::parallel_for(g.colour_offsets[c], g.colour_offsets[c + 1], [&](int i) {
-        moved[i - g.colour_offsets[c]] = move_group(p, g, static_cast<size_t>(i), options.accept_tolerance, X);
-      });
-      for (double m : moved) move = std::max(move, m);
+    if (age < 0 || age >= kRefreshInterval) {
+      compute_deviations(p, X, D);
+      age = 0;
     }
+    Accumulator total;
+    for (int e : g.closed) total.top = std::max(total.top, D[e].squaredNorm());
+    for (int c = 0; c < colours; ++c) {
+      const tbb::blocked_range<int> range(g.colour_offsets[c], g.colour_offsets[c + 1], 128);
+      total = join(total, tbb::parallel_reduce(range, Accumulator{}, [&](const tbb::blocked_range<int>& r, Accumulator acc) {
+        Scratch& sc = scratch.local();
+        for (int i = r.begin(); i != r.end(); ++i) move_group(p, g, i, options.accept_tolerance, sc, X, D, acc);
+        return acc;
+      }, join));
+    }
+    ++age;
     IterationRecord record;
     record.iteration = s;
-    record.max_distortion = field_deviation(p, X).maxCoeff();
-    record.largest_move = move;
+    record.max_distortion = std::sqrt(total.top);
+    record.largest_move = total.move;
     record.time_s = elapsed();
     if ((moves_settled = record_sweep(result, options, record))) break;
   }

@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/report/stats.h"
@@ -30,6 +32,12 @@ void say(const GParamOptions& o, const std::string& line) {
   if (o.progress) o.progress(line);
 }
 
+std::string fixed(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", seconds);
+  return buffer;
+}
+
 
 void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -45,18 +53,24 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
   out.singular = singularities(out.quarters);
   out.field_time_s = seconds_from(t0);
+  const CrossFieldTiming& t = out.field.timing;
+  std::string split;
+  if (!o.field)
+    split = " (assemble " + fixed(t.assemble_s) + ", analyse " + fixed(t.analyze_s) + ", factorize " + fixed(t.factorize_s) +
+            (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) + ")";
   say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
-             ", " + std::to_string(out.singular.size()) + " singularities, " + std::to_string(out.field_time_s) + " s");
+             ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }
 
 void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   out.cut = cut_graph(mesh, out.graph, out.frames, out.field.u, out.quarters);
+  const double cut_s = seconds_from(t0);
   out.problem = seamless_problem(mesh, out.graph, out.cut);
   out.cut_time_s = seconds_from(t0);
   say(o, "cut: " + std::to_string(out.cut.num_cut_edges) + " seam edges in " + std::to_string(out.cut.branches.size()) +
-             " branches, " + std::to_string(out.cut.num_wedges()) + " cut-mesh vertices, " +
-             std::to_string(out.cut_time_s) + " s");
+             " branches, " + std::to_string(out.cut.num_wedges()) + " cut-mesh vertices, " + fixed(out.cut_time_s) +
+             " s (cut graph " + fixed(cut_s) + ", seamless problem " + fixed(out.cut_time_s - cut_s) + ")");
 }
 
 
@@ -91,7 +105,10 @@ void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
 GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const std::string& source) {
   check_options(o);
   GParamOutcome out;
+  const auto t0 = std::chrono::steady_clock::now();
   out.graph = surface_graph(mesh, source);
+  out.graph_time_s = seconds_from(t0);
+  say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   compute_field(mesh, o, out);
   compute_cut(mesh, o, out);
   const double area = out.frames.area.sum();

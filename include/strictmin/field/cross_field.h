@@ -29,15 +29,26 @@ struct FaceFrames {
 
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& graph);
 
+// Wall seconds of a computed field's phases (0 for a given field).
+struct CrossFieldTiming {
+  double assemble_s = 0, analyze_s = 0, factorize_s = 0, iterate_s = 0;
+};
+
 struct CrossField {
   Eigen::VectorXcd u;   // #F, |u_f| = 1: the fourth power of any of the face's four directions
   double energy = 0;    // E(u) above
-  int iterations = 0;   // inverse power iterations (0 for a given field)
+  int iterations = 0;   // solves with the factorization (Lanczos steps; 0 for a given field)
+  double residual = 0;  // the smoothest field's relative eigen-residual at the end (see below)
+  CrossFieldTiming timing;
 };
 
 struct CrossFieldOptions {
-  int max_iterations = 10;  // Knoeppel et al.: a few iterations give the field; more barely change it
-  double tolerance = 1e-11;  // stop when the unit (mass-norm) iterate moves by less
+  // Lanczos steps (solves with the factorization) at most, and the stop: the relative
+  // residual ||T y - theta y||_M / (theta ||y||_M) of T = (E + eps M)^-1 M's top Ritz pair.
+  // 1e-12 because the per-face normalized field is sensitive where the eigenvector is small:
+  // at 1e-9 to 1e-11 the singularities of elephant and horse still move (docs/gparam.md).
+  int max_iterations = 60;
+  double tolerance = 1e-12;
   // Rotate the whole field (E is invariant under a global phase) so that face `pin_face`
   // has a direction along pin_direction (projected into its plane). -1: no pinning.
   int pin_face = -1;
@@ -45,8 +56,8 @@ struct CrossFieldOptions {
 };
 
 // The smoothest unit field (Knoeppel et al. 2013): the eigenvector of the smallest eigenvalue
-// of E against the area mass, by inverse power iteration on one sparse Cholesky
-// factorization of (E + eps M), normalized per face.
+// of E against the area mass, by Lanczos on (E + eps M)^-1 M with one sparse Cholesky
+// factorization of the complex Hermitian (E + eps M), normalized per face.
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
                                  const CrossFieldOptions& options = {});
 

@@ -50,6 +50,7 @@ struct GParamOutcome {
   Mesh mapped;                // input V and F, UV = result / h, FUV = corner wedges
   MapDistortion measured;     // fd against the field's frames, or arap (dimensionless)
   double seam_error = 0;      // largest transition violation, in UV units
+  double graph_time_s = 0;  // the surface graph (edges, fans) and the manifold checks
   double field_time_s = 0, cut_time_s = 0, solve_time_s = 0;
 };
 

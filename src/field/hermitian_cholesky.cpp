@@ -1,0 +1,85 @@
+#include "field/hermitian_cholesky.h"
+
+#include <cholmod.h>
+
+#include <chrono>
+#include <cstring>
+#include <limits>
+
+#include "strictmin/solvers/timing.h"
+
+namespace strictmin {
+
+struct HermitianCholesky::Impl {
+  cholmod_common common;
+  cholmod_factor* L = nullptr;
+  // cholmod_solve2's result and workspace, kept between solves (no allocation per solve).
+  cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
+  Impl() {
+    cholmod_start(&common);
+    common.print = 0;
+    // AMD only: on the face graphs of 100k triangles METIS saves 30% of the factorization's
+    // time but its ordering costs 7 times AMD's (0.49 s against 0.07 s CPU).
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_AMD;
+    common.postorder = 1;
+    common.supernodal = CHOLMOD_SUPERNODAL;
+  }
+  ~Impl() {
+    for (cholmod_dense** d : {&X, &Y, &E})
+      if (*d) cholmod_free_dense(d, &common);
+    if (L) cholmod_free_factor(&L, &common);
+    cholmod_finish(&common);
+  }
+};
+
+HermitianCholesky::HermitianCholesky() : impl_(new Impl) {}
+HermitianCholesky::~HermitianCholesky() { delete impl_; }
+
+bool HermitianCholesky::factorize(const HermitianLower& M) {
+  cholmod_common& c = impl_->common;
+  if (impl_->L) cholmod_free_factor(&impl_->L, &c);
+  // A view of M's arrays: CHOLMOD's complex type is interleaved (re, im), as std::complex.
+  cholmod_sparse A;
+  std::memset(&A, 0, sizeof A);
+  A.nrow = A.ncol = static_cast<size_t>(M.n);
+  A.nzmax = M.row.size();
+  A.p = const_cast<int*>(M.start.data());
+  A.i = const_cast<int*>(M.row.data());
+  A.x = const_cast<std::complex<double>*>(M.value.data());
+  A.stype = -1;
+  A.itype = CHOLMOD_INT;
+  A.xtype = CHOLMOD_COMPLEX;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  auto t0 = std::chrono::steady_clock::now();
+  impl_->L = cholmod_analyze(&A, &c);
+  analyze_s = seconds_since(t0);
+  if (!impl_->L || c.status != CHOLMOD_OK) return false;
+  t0 = std::chrono::steady_clock::now();
+  const int ok = cholmod_factorize(&A, impl_->L, &c);
+  factorize_s = seconds_since(t0);
+  return ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+}
+
+Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
+  cholmod_common& c = impl_->common;
+  cholmod_dense B;
+  std::memset(&B, 0, sizeof B);
+  B.nrow = B.d = static_cast<size_t>(b.size());
+  B.ncol = 1;
+  B.nzmax = B.nrow;
+  B.x = const_cast<std::complex<double>*>(b.data());
+  B.xtype = CHOLMOD_COMPLEX;
+  B.dtype = CHOLMOD_DOUBLE;
+  Eigen::VectorXcd x(b.size());
+  if (!cholmod_solve2(CHOLMOD_A, impl_->L, &B, nullptr, &impl_->X, nullptr, &impl_->Y, &impl_->E, &c)) {
+    x.setConstant(std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
+    return x;
+  }
+  std::memcpy(x.data(), impl_->X->x, sizeof(std::complex<double>) * static_cast<size_t>(b.size()));
+  return x;
+}
+
+}  // namespace strictmin

@@ -1,0 +1,40 @@
+#pragma once
+// Sparse Cholesky L L^H of a complex Hermitian positive definite matrix (CHOLMOD's complex
+// supernodal factorization, AMD order): the cross field's connection Laplacian factored as
+// the complex F by F form, half the flops and a quarter of the entries of its 2F by 2F real
+// form (docs/gparam.md, "The field"). Private to the field code.
+#include <Eigen/Core>
+#include <complex>
+#include <vector>
+
+namespace strictmin {
+
+// A Hermitian matrix by its lower triangle, column major: column j holds rows
+// row[start[j] .. start[j+1]) (sorted, the diagonal first) with values value[...].
+struct HermitianLower {
+  int n = 0;
+  std::vector<int> start, row;
+  std::vector<std::complex<double>> value;
+};
+
+class HermitianCholesky {
+ public:
+  HermitianCholesky();
+  ~HermitianCholesky();
+  HermitianCholesky(const HermitianCholesky&) = delete;
+  HermitianCholesky& operator=(const HermitianCholesky&) = delete;
+
+  // AMD order and symbolic analysis of the pattern, then the numeric factorization. False
+  // when the matrix is not (numerically) positive definite.
+  bool factorize(const HermitianLower& A);
+  // x = A^-1 b.
+  Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;
+
+  double analyze_s = 0, factorize_s = 0;  // wall seconds of the last factorize()
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace strictmin
