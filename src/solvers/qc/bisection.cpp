@@ -80,6 +80,7 @@ SparseSocpSettings feasibility_settings(int max_iterations) {
   SparseSocpSettings st;
   st.max_iterations = max_iterations;
   st.gap_tolerance = 1e-12;
+  st.refinement_steps = 10;  // the dual iterate's accuracy near the optimum decides the certificate
   return st;
 }
 

@@ -41,8 +41,9 @@ FeasibilityTest test_level(const BisectionSetup& setup, double free_level, const
 
 // The interior-point settings of a feasibility test. The witness and the certificate stop it
 // early, so its own criterion only says when to give up: the gap is taken down to 1e-12 (the
-// slack is of order 1), so that levels close below the optimum, where the optimal slack is
-// small but positive, can still be certified.
+// slack is of order 1), and each Newton system is refined up to 10 times (not 3), so that
+// levels close below the optimum, where the optimal slack is small but positive, can still
+// be certified.
 SparseSocpSettings feasibility_settings(int max_iterations);
 
 struct BisectionOutcome {
