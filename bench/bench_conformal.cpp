@@ -36,6 +36,8 @@ void QcStep(benchmark::State& state) {
   qc::BisectionSetup s;
   s.parts = &parts;
   s.frames = qc::frames_of(parts, x);
+  s.slack_scale = qc::slack_scales(Measure::Quasiconformal, parts, x);  // as solve_conformal_linf
+  s.ipm = qc::feasibility_settings(80);
   s.cache = &cache;
   // Arg 2: 0 = a level 1% below the start's maximum (infeasible: the full program), 1 = 0.1%
   // below (feasible).

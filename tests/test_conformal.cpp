@@ -60,7 +60,7 @@ TEST(Conformal, AffinePatchQcReachesTheExtremalK) {
   const Problem p = affine_patch(1.5, 3.0, start);
   ConformalOptions o;
   o.measure = Measure::Quasiconformal;
-  o.bisection_tolerance = 1e-9;
+  o.bisection_tolerance = 1e-8;
   o.frame_tolerance = 1e-7;
   ConformalStats st;
   double last = INFINITY;
@@ -86,7 +86,7 @@ TEST(Conformal, AffinePatchIsoReachesTheExtremalS) {
   const Problem p = affine_patch(1.5, 3.0, start);
   ConformalOptions o;
   o.measure = Measure::Isometric;
-  o.bisection_tolerance = 1e-9;
+  o.bisection_tolerance = 1e-8;
   o.frame_tolerance = 1e-7;
   ConformalStats st;
   const Result r = solve_conformal_linf(p, start, o, &st);
@@ -97,6 +97,39 @@ TEST(Conformal, AffinePatchIsoReachesTheExtremalS) {
   std::printf("iso affine: S %.12f..%.12f, %d bisection steps, %d frame iterations, %d ipm iterations\n",
               r.distortion.minCoeff(), r.distortion.maxCoeff(), st.bisection_steps, st.frame_iterations,
               st.ipm_iterations);
+}
+
+// Below the accuracy the feasibility test can certify (iso, a bracket of 2e-10 on S = 2: the
+// slack at its closing levels is about 1e-10, under the interior-point method's dual accuracy
+// of about 1e-9 there), the bracket closes only through undecided levels: almost-solved,
+// saying so, never solved; the map is still the extremal one. (qc certifies this bracket:
+// its slack is relative to each element's scale, qc_program.h.)
+TEST(Conformal, UncertifiableToleranceIsAlmostSolved) {
+  Eigen::MatrixXd start;
+  const Problem p = affine_patch(1.5, 3.0, start);
+  {
+    const Measure m = Measure::Isometric;
+    ConformalOptions o;
+    o.measure = m;
+    o.bisection_tolerance = 1e-10;
+    o.frame_tolerance = 1e-7;
+    const Result r = solve_conformal_linf(p, start, o);
+    EXPECT_EQ(r.status, SolveStatus::AlmostSolved) << measure_name(m) << ": " << r.message;
+    EXPECT_NE(r.message.find("could not decide"), std::string::npos) << r.message;
+    EXPECT_NEAR(r.distortion.maxCoeff(), 2.0, 1e-6);
+    EXPECT_EQ(flipped(p, r.positions), 0);
+  }
+}
+
+// A usable map whose bisection brackets closed: solved, or almost-solved because some bracket
+// closed only through levels the feasibility test could not decide (docs/measures.md: direct's
+// levels with fixed bounds often end so, their slack near the optimum being below the
+// interior-point method's accuracy over a range of levels).
+void expect_bracket_closed(const Result& r) {
+  if (r.status == SolveStatus::AlmostSolved)
+    EXPECT_NE(r.message.find("could not decide"), std::string::npos) << r.message;
+  else
+    EXPECT_EQ(r.status, SolveStatus::Solved) << status_name(r.status) << ": " << r.message;
 }
 
 // Area with the measure within `fraction` of the maximum (relative).
@@ -117,6 +150,7 @@ TEST(Conformal, DirectAndLinfQcAreNearlyConstantWithTheSameMaximum) {
   const Problem p = test_support::figure2(10, 0.35);
   const Eigen::MatrixXd start = solve_l2(p).positions;
   ConformalOptions o;
+  o.bisection_tolerance = 1e-6;  // what the feasibility test certifies here (1e-7 is not always)
   ConformalStats ls, ds;
   const Result linf = solve_conformal_linf(p, start, o, &ls);
   DirectOptions d;
@@ -124,7 +158,7 @@ TEST(Conformal, DirectAndLinfQcAreNearlyConstantWithTheSameMaximum) {
   d.k_min = 1.0;
   const Result direct = solve_conformal_direct(p, start, o, d, &ds);
   ASSERT_EQ(linf.status, SolveStatus::Solved) << linf.message;
-  ASSERT_EQ(direct.status, SolveStatus::Solved) << direct.message;
+  expect_bracket_closed(direct);
   // The same maximum: direct's first level is the L-infinity solve (its later levels widen the
   // fixed bounds by delta_k * 1e-3 relative, solve_direct).
   EXPECT_NEAR(direct.distortion.maxCoeff(), linf.distortion.maxCoeff(), (1e-6 + 1e-3 * d.delta_k) * linf.distortion.maxCoeff());
@@ -150,6 +184,7 @@ TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
   for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
     ConformalOptions o;
     o.measure = m;
+    o.bisection_tolerance = 1e-6;
     const Result r = solve_conformal_linf(p, start, o);
     EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
     EXPECT_EQ(flipped(p, r.positions), 0);
@@ -158,7 +193,7 @@ TEST(Conformal, NoFlipsWhereTheL2MapFlips) {
     d.delta_k = 5e-2;
     d.k_min = 1.0;
     const Result strict = solve_conformal_direct(p, start, o, d);
-    EXPECT_EQ(strict.status, SolveStatus::Solved) << strict.message;
+    expect_bracket_closed(strict);
     EXPECT_EQ(flipped(p, strict.positions), 0);
     EXPECT_NEAR(strict.distortion.maxCoeff(), r.distortion.maxCoeff(), (1e-5 + 1e-3 * d.delta_k) * r.distortion.maxCoeff());
   }

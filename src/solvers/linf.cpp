@@ -222,7 +222,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     const Phase1 ph = run_phase1(p, cls, bounds, p.with_free_dofs(start.x), options);
     result.iterations += ph.iterations;
     if (!ph.feasible) {
-      result.status = SolveStatus::Infeasible;
+      result.status = ph.certified ? SolveStatus::Infeasible : SolveStatus::NumericalError;
       result.message = ph.message;
       return finish(ph.X);
     }

@@ -62,8 +62,13 @@ Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen
       best_x = s.x;
     }
     best_lb = std::max(best_lb, socp::certified_lower_bound(prog, ls, s.z, s.y));
-    // Done when strictly feasible, certainly infeasible, or converged.
-    return best_t < 0 || best_lb > tol || best_t - best_lb <= options.gap_tolerance * scale;
+    // Done when strictly feasible, certainly infeasible, or converged where the least miss
+    // is certified positive but small enough to absorb (<= tol). A converged gap alone does
+    // not decide: while the bound is <= 0 a map that meets every bound may exist, and one is
+    // wanted (a start that misses its bounds by round-off, handed on from solve to solve as
+    // in local-global's global steps of a direct level, would otherwise drift further out).
+    return best_t < 0 || best_lb > tol ||
+           (best_t - best_lb <= options.gap_tolerance * scale && best_lb > 0 && best_t <= tol);
   });
   out.iterations = outcome.iterations;
   out.t = best_t;
@@ -71,8 +76,9 @@ Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen
   out.X = X0;
   for (int v = 0; v < p.num_vertices; ++v)
     if (vertex_dof[v] >= 0) out.X.row(v) = best_x.segment(vertex_dof[v], n).transpose();
-  if (best_lb > tol || (outcome.status == socp::IpmStatus::MonitorStopped && best_t > tol)) {
+  if (best_lb > tol) {  // certified: every map misses some bound by more than tol
     out.feasible = false;
+    out.certified = true;
     out.message = "the fixed bounds cannot all be met: some bounded element exceeds its bound k_T by at least " +
                   format(std::max(best_lb, 0.0)) + " (best map found: " + format(best_t) + ")";
   } else if (best_t > tol) {

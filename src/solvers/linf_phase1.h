@@ -14,6 +14,7 @@ namespace strictmin::linf_detail {
 
 struct Phase1 {
   bool feasible = true;
+  bool certified = false;     // not feasible, and certified so (else: undecided)
   double t = -kInf;           // max_T (D_T - k_T) at the returned map
   double lower_bound = -kInf; // certified: no map does better than this t
   Eigen::MatrixXd X;          // the map (vertices outside the bounded elements unchanged)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "strictmin/io/input_error.h"
@@ -26,6 +27,14 @@ double max_of(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
   double m = 0;
   for (Eigen::Index e = 0; e < d.size(); ++e)
     if (bounds.size() == 0 || !(bounds(e) >= 0)) m = std::max(m, d(e));
+  return m;
+}
+
+// By how much the distortion exceeds the fixed bounds at worst (-inf: no bounded element).
+double bound_excess(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
+  double m = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index e = 0; e < bounds.size(); ++e)
+    if (bounds(e) >= 0) m = std::max(m, d(e) - bounds(e));
   return m;
 }
 
@@ -114,7 +123,10 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
         Eigen::MatrixXd accelerated_targets;
         const Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
         const bool keeps_orientation = !o.no_flips || flips_added(p, out.positions, X) == 0;
-        if (keeps_orientation && da.allFinite() &&
+        // A direct level's bounded elements: no further over their bounds than the plain step
+        // (the maximum above is over the free elements only).
+        const bool keeps_bounds = bound_excess(da, bounds) <= std::max(0.0, bound_excess(d, bounds));
+        if (keeps_orientation && keeps_bounds && da.allFinite() &&
             objective(p, da, bounds, energy) <= objective(p, d, bounds, energy)) {
           next = X;
           d = da;

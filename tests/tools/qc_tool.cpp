@@ -1,10 +1,14 @@
 // qc_tool: one feasibility program of the qc / iso bisection (solvers/qc/qc_program.h) on
-// Figure 2's set-up, solved to convergence by our sparse interior-point method, written as
-// JSON (G as triplets, h, cone dimensions, c, our optimum) for tests/py/test_qc_cvxopt.py.
+// Figure 2's set-up, solved by our sparse interior-point method with the bisection's settings
+// and slack scales, written as JSON (G as triplets, h, cone dimensions, c, our optimum, the
+// certificate: the best corrected dual bound, null when none) for tests/py/test_qc_cvxopt.py.
 //
 //   qc_tool CELLS SHIFT MEASURE LEVEL [--out FILE]
 // MEASURE: qc or iso; LEVEL: K (qc) or S (iso) for every element; frames from the L2 map.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -12,6 +16,7 @@
 #include <string>
 
 #include "strictmin/solvers/l2.h"
+#include "solvers/qc/bisection.h"
 #include "solvers/qc/qc_program.h"
 #include "solvers/qc/sparse_socp.h"
 #include "strictmin/tasks/examples.h"
@@ -35,12 +40,20 @@ int main(int argc, char** argv) {
   const Eigen::VectorXd x = p.free_dofs(solve_l2(p).positions);
   const Eigen::VectorXd frames = qc::frames_of(parts, x);
   const Eigen::VectorXd levels = Eigen::VectorXd::Constant(parts.count(), level);
-  const qc::SparseSocp prog = qc::slack_program(m, parts, frames, levels, 1.0);
-  // 2. Solved to convergence (no early stop).
-  qc::SparseSocpSettings settings;
-  settings.gap_tolerance = 1e-9;
+  const qc::SparseSocp prog =
+      qc::slack_program(m, parts, frames, levels, 1.0, qc::slack_scales(m, parts, x));  // as the bisection's
+  // 2. Solved with the bisection's settings, without its early stop; the certificate as the
+  //    bisection tries it: the best corrected dual bound over the iterates with a positive
+  //    slack and the gap below it.
+  qc::SparseSocpSettings settings = qc::feasibility_settings(80);
   settings.verbose = std::getenv("QC_TOOL_VERBOSE") != nullptr;
-  const qc::SparseSocpOutcome r = qc::solve_sparse_socp(prog, qc::slack_start(m, parts, x), settings);
+  double bound = -std::numeric_limits<double>::infinity();
+  auto monitor = [&](const qc::SparseSocpIterate& it) {
+    if (it.pobj > 0 && it.gap < it.pobj && it.dres <= 1e-4)
+      bound = std::max(bound, qc::corrected_dual_bound(prog, *it.z, nullptr));
+    return false;
+  };
+  const qc::SparseSocpOutcome r = qc::solve_sparse_socp(prog, qc::slack_start(m, parts, x), settings, monitor);
   // 3. The dump.
   nlohmann::json j;
   std::vector<int> rows, cols;
@@ -62,7 +75,11 @@ int main(int argc, char** argv) {
   j["dobj"] = r.dobj;
   j["converged"] = r.status == qc::SparseSocpStatus::Converged;
   j["iterations"] = r.iterations;
-  j["corrected_bound"] = qc::corrected_dual_bound(prog, r.z, nullptr);
+  bound = std::max(bound, qc::corrected_dual_bound(prog, r.z, nullptr));
+  if (std::isfinite(bound))
+    j["corrected_bound"] = bound;
+  else
+    j["corrected_bound"] = nullptr;  // no certificate
   j["status"] = r.status == qc::SparseSocpStatus::Converged ? "converged" : r.message;
   if (out.empty())
     std::cout << j.dump() << "\n";

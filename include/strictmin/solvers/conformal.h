@@ -16,7 +16,8 @@
 // non-convex problem (the frames fix a convex subset of the feasible maps).
 //
 // direct: Algorithm 2 (strict.h: solve_direct) with each level this bisection, the fixed
-// elements' bounds as cone levels of their own.
+// elements' bounds as cone levels of their own; levels after the first bisect to the
+// larger of bisection_tolerance and DirectOptions::level_gap.
 #include <Eigen/Core>
 #include <functional>
 
@@ -30,7 +31,9 @@ namespace strictmin {
 struct ConformalOptions {
   Measure measure = Measure::Quasiconformal;  // Quasiconformal or Isometric
   // Bisection stops when the bracket [certified infeasible, feasible] of the level is below
-  // bisection_tolerance * max(1, level) (in measure units: K or S).
+  // bisection_tolerance * max(1, level) (in measure units: K or S). A last bracket closed
+  // only through levels the feasibility test could not decide gives almost-solved
+  // (docs/measures.md, "When is a bracket closed").
   double bisection_tolerance = 1e-7;
   int max_bisection_steps = 60;
   // Frame iterations stop when one lowers the maximum by less than frame_tolerance * max

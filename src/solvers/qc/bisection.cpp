@@ -44,7 +44,7 @@ double free_max(const BisectionSetup& s, const Eigen::VectorXd& x) {
 FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eigen::VectorXd& x_start) {
   // 1. The slack program at these levels, started from the last feasible map.
   const Eigen::VectorXd level = levels(s, free_level);
-  const SparseSocp program = slack_program(s.measure, *s.parts, s.frames, level, 1.0);
+  const SparseSocp program = slack_program(s.measure, *s.parts, s.frames, level, 1.0, s.slack_scale);
   const int nx = s.parts->num_x;
   FeasibilityTest out;
   // 2. Stop on the first iterate that settles the question: a witness map, or a positive
@@ -58,8 +58,9 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
       return true;
     }
     // A positive dual bound, certified after correcting the dual iterate to exact
-    // feasibility (its residual would otherwise leave the bound unproven).
-    if (it.dobj > 0 && it.dres <= 1e-4 && corrected_dual_bound(program, *it.z, s.cache) > 0) {
+    // feasibility (its residual would otherwise leave the bound unproven); tried once the
+    // slack is positive and the gap below it (the raw dual bound may still be negative).
+    if (it.pobj > 0 && it.gap < it.pobj && it.dres <= 1e-4 && corrected_dual_bound(program, *it.z, s.cache) > 0) {
       out.verdict = Verdict::Infeasible;
       return true;
     }
@@ -69,10 +70,18 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
       solve_sparse_socp(program, slack_start(s.measure, *s.parts, x_start), s.ipm, monitor, s.cache);
   out.ipm_iterations = r.iterations;
   // 3. Otherwise the optimum slack's sign decides, when the solve converged away from 0.
-  if (out.verdict == Verdict::Undecided && r.dobj > 0 && corrected_dual_bound(program, r.z, s.cache) > 0)
+  if (out.verdict == Verdict::Undecided && r.pobj > 0 && corrected_dual_bound(program, r.z, s.cache) > 0)
     out.verdict = Verdict::Infeasible;
   if (out.verdict == Verdict::Undecided) out.message = r.message;
   return out;
+}
+
+SparseSocpSettings feasibility_settings(int max_iterations) {
+  SparseSocpSettings st;
+  st.max_iterations = max_iterations;
+  st.gap_tolerance = 1e-12;
+  st.refinement_steps = 10;  // the dual iterate's accuracy near the optimum decides the certificate
+  return st;
 }
 
 BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, double floor, double cap,
@@ -81,8 +90,13 @@ BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, doub
   out.x = x0;
   out.value = free_max(s, x0);
   out.feasible = std::isfinite(out.value);
-  double lo = floor;
-  auto width_ok = [&] { return out.value - lo <= tolerance * std::max(1.0, out.value); };
+  // The bracket [lo, value]: value a witness's own value; below it, lo_certified (the floor or
+  // a level with a positive corrected dual bound) and lo (>= lo_certified: also undecided
+  // levels, where the optimal slack is 0 to the solver's accuracy, so that the optimum is
+  // there to that accuracy: the bisection steers by lo, the convergence is measured by
+  // lo_certified).
+  double lo = floor, lo_certified = floor;
+  auto width = [&] { return tolerance * std::max(1.0, out.value); };
   // One test at `level`: a feasible one lowers the upper end to the witness's own value,
   // any other raises the lower end (certified only when infeasible).
   auto step = [&](double level) {
@@ -93,33 +107,52 @@ BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, doub
       out.x = t.x;
       out.value = std::min(t.value, level);
       out.feasible = true;
-      return true;
+      if (lo >= out.value) lo = lo_certified;  // an undecided level above a witness: not the optimum
+    } else {
+      lo = std::max(lo, level);
+      if (t.verdict == Verdict::Infeasible) {
+        lo_certified = std::max(lo_certified, level);
+        out.certified_lower = std::isnan(out.certified_lower) ? level : std::max(out.certified_lower, level);
+      } else if (out.message.empty()) {
+        out.message = "undecided at level " + std::to_string(level) + (t.message.empty() ? "" : ": " + t.message);
+      }
     }
-    lo = std::max(lo, level);
-    if (t.verdict == Verdict::Infeasible)
-      out.certified_lower = std::isnan(out.certified_lower) ? level : std::max(out.certified_lower, level);
-    else if (out.message.empty())
-      out.message = "undecided at level " + std::to_string(level) + (t.message.empty() ? "" : ": " + t.message);
-    return false;
+    return t.verdict;
   };
   // 1. Without a feasible start: first a level near the cap (an orientation-preserving map).
   if (!out.feasible) {
-    if (!step(cap)) {
+    if (step(cap) != Verdict::Feasible) {
       out.lower = lo;
       return out;
     }
   }
   // 2. Gallop down from the upper end (frame updates usually lower it a little), then bisect.
-  double d = std::max(1e-3 * (out.value - lo), tolerance * std::max(1.0, out.value));
+  double d = std::max(1e-3 * (out.value - lo), width());
   bool bracketed = false;
-  while (!bracketed && !width_ok() && out.steps < max_steps) {
+  while (!bracketed && out.value - lo > width() && out.steps < max_steps) {
     const double level = out.value - d;
     if (level <= lo) break;
-    bracketed = !step(level);
+    bracketed = step(level) != Verdict::Feasible;
     d *= 4;
   }
-  while (!width_ok() && out.steps < max_steps) step(midpoint(lo, out.value));
-  out.converged = width_ok();
+  // 3. Bisect [lo, value] down to the tolerance. A bracket closed by an undecided lower end
+  //    (the optimum sits there to the solver's accuracy) is then closed by a certified level
+  //    as far below the optimum as the tolerance allows, value - 0.999 w (w the tolerance's
+  //    width); when that is undecided too, a witness between it and the upper end lowers the
+  //    upper end, and with it the next closing level (at most kClosingSteps such tests).
+  constexpr int kClosingSteps = 6;
+  int closing_steps = 0;
+  while (out.value - lo_certified > width() && out.steps < max_steps) {
+    if (out.value - lo > width()) {
+      step(midpoint(lo, out.value));
+      continue;
+    }
+    if (closing_steps++ >= kClosingSteps) break;
+    const double close = out.value - 0.999 * width();
+    step(lo < close ? close : midpoint(lo, out.value));
+  }
+  out.converged = out.value - lo_certified <= width();
+  out.closed_undecided = !out.converged && out.value - lo <= width();
   out.lower = lo;
   return out;
 }

@@ -31,6 +31,7 @@ struct BisectionSetup {
   Measure measure = Measure::Quasiconformal;
   const ConformalParts* parts = nullptr;
   Eigen::VectorXd frames;      // 2 per active element
+  Eigen::VectorXd slack_scale; // per active element (qc_program.h: slack_scales; empty: 1)
   Eigen::VectorXd bounds;      // per active element, < 0: free
   SparseSocpSettings ipm;
   SparseCholeskyCache* cache = nullptr;
@@ -38,19 +39,31 @@ struct BisectionSetup {
 
 FeasibilityTest test_level(const BisectionSetup& setup, double free_level, const Eigen::VectorXd& x_start);
 
+// The interior-point settings of a feasibility test. The witness and the certificate stop it
+// early, so its own criterion only says when to give up: the gap is taken down to 1e-12 (the
+// slack is of order 1), and each Newton system is refined up to 10 times (not 3), so that
+// levels close below the optimum, where the optimal slack is small but positive, can still
+// be certified.
+SparseSocpSettings feasibility_settings(int max_iterations);
+
 struct BisectionOutcome {
   Eigen::VectorXd x;           // the lowest feasible map found
   double value = 0;            // its largest free frame value (+inf: none found)
   double lower = 0;            // bracket's lower end (certified or undecided)
   double certified_lower = std::numeric_limits<double>::quiet_NaN();  // largest level certified infeasible
   int steps = 0, ipm_iterations = 0;
-  bool converged = false;      // bracket below tolerance (not stopped by the step cap)
+  // The certified bracket [max(floor, certified_lower), value] is within the tolerance.
+  bool converged = false;
+  // Not converged, but the bracket [lower, value] is: its lower end is a level that the test
+  // could not decide (twice at the closing levels), not a certificate.
+  bool closed_undecided = false;
   bool feasible = false;       // some feasible map (the start counts when its value is finite)
   std::string message;
 };
 
 // From the map x0 (its free frame value is the first upper end; +inf: the first test is at
-// level `cap`), down to a bracket of width tolerance * max(1, upper).
+// level `cap`), down to a bracket of width tolerance * max(1, upper). `floor` is a certified
+// lower end (both measures are >= 1).
 BisectionOutcome bisect(const BisectionSetup& setup, const Eigen::VectorXd& x0, double floor, double cap,
                         double tolerance, int max_steps);
 

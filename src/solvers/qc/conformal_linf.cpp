@@ -49,6 +49,17 @@ std::string no_orientation_preserving_map() {
          "1e6, resp. S = 1e6); the handles may reverse the orientation of the mesh between them";
 }
 
+// The last bisection's bracket closed only at undecided levels: almost-solved (result.h).
+std::string bracket_closed_undecided(const qc::BisectionOutcome& b, double tolerance) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "reduced accuracy: the last bisection's bracket [%.10g, %.10g] is within %.3g only through a level the "
+                "feasibility test could not decide (the optimal slack is 0 there to the solver's accuracy); its "
+                "certified lower end is %.10g",
+                b.lower, b.value, tolerance, std::isnan(b.certified_lower) ? 1.0 : b.certified_lower);
+  return text;
+}
+
 }  // namespace
 
 Eigen::VectorXd conformal_distortion(const Problem& p, Measure m, const Eigen::MatrixXd& X) {
@@ -70,10 +81,11 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   setup.measure = options.measure;
   setup.parts = &parts;
   setup.bounds = active_bounds(parts, options.element_bounds);
-  setup.ipm.max_iterations = options.max_ipm_iterations;
+  setup.ipm = qc::feasibility_settings(options.max_ipm_iterations);
   setup.ipm.verbose = std::getenv("STRICTMIN_QC_VERBOSE") != nullptr;  // one line per iteration
   setup.cache = &cache;
   setup.frames = start_frames(parts, x);
+  setup.slack_scale = qc::slack_scales(options.measure, parts, x);
   ConformalStats local;
   ConformalStats& st = stats ? *stats : local;
   Result out;
@@ -115,9 +127,10 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     }
     x = t.x;
     setup.frames = qc::frames_of(parts, x);
+    setup.slack_scale = qc::slack_scales(options.measure, parts, x);
     current = qc::free_max(setup, x);
   }
-  bool converged = false;
+  bool converged = false, closed_undecided = false;
   double last_improvement = 1.0;  // relative, of the last frame iteration
   std::string message;
   // 4. Frame iterations: bisection for the frames of the current map, then new frames.
@@ -144,6 +157,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     st.frames_lower_bound = b.certified_lower;
     const Eigen::VectorXd x_new = b.x;
     setup.frames = qc::frames_of(parts, x_new);
+    setup.slack_scale = qc::slack_scales(options.measure, parts, x_new);
     const double next = qc::free_max(setup, x_new);  // the measure of the new map
     // Monotone: the previous map stays feasible under frames taken from it.
     if (std::isfinite(current) && next > current * (1 + 1e-12) + 1e-12) {
@@ -155,7 +169,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     const double improvement = std::isfinite(current) ? current - next : kInf;
     x = x_new;
     current = next;
-    message = b.converged ? "" : "bisection stopped at its step limit: " + b.message;  // of the last one
+    message = b.converged ? "" : b.closed_undecided ? bracket_closed_undecided(b, tolerance) : "bisection stopped at its step limit: " + b.message;  // of the last one
     IterationRecord rec;
     rec.iteration = f;
     rec.max_distortion = current;
@@ -166,6 +180,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     last_improvement = std::isfinite(improvement) ? improvement / current : 1.0;
     if (improvement <= options.frame_tolerance * current && tolerance <= options.bisection_tolerance) {
       converged = b.converged;
+      closed_undecided = b.closed_undecided;
       break;
     }
   }
@@ -174,7 +189,10 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   out.distortion = conformal_distortion(problem, options.measure, out.positions);
   out.iterations = st.frame_iterations;
   if (out.status == SolveStatus::Solved && !converged) {
-    out.status = SolveStatus::MaxIterations;
+    StopState stop;
+    stop.within_acceptable = closed_undecided;  // the bracket closed, but not by a certificate
+    stop.cap_reached = !closed_undecided;
+    out.status = decide_status(stop);
     if (message.empty()) message = "frame iterations stopped at their limit while still lowering the maximum";
   }
   out.message = message;
@@ -195,6 +213,9 @@ Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& sta
   d.level_solver = [&](const Problem& level, const LinfOptions& o, const Eigen::MatrixXd& X) {
     ConformalOptions c = options;
     c.element_bounds = o.element_bounds;
+    // Levels after the first need their value to a fraction of delta_k only (solve_direct
+    // raises the gap to DirectOptions::level_gap from the second level): so does the bracket.
+    c.bisection_tolerance = std::max(options.bisection_tolerance, o.gap_tolerance);
     c.progress = nullptr;
     ConformalStats s;
     Result r = solve_conformal_linf(level, X, c, &s);

@@ -1,5 +1,6 @@
 #include "solvers/qc/qc_program.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -118,8 +119,20 @@ Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen:
   return v;
 }
 
+Eigen::VectorXd slack_scales(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x) {
+  Eigen::VectorXd rho = Eigen::VectorXd::Ones(parts.count());
+  if (m != Measure::Quasiconformal) return rho;
+  Eigen::VectorXd a, b;
+  evaluate_ab(parts, x, a, b);
+  double largest = 0;
+  for (int i = 0; i < parts.count(); ++i) largest = std::max(largest, std::hypot(a[2 * i], a[2 * i + 1]));
+  for (int i = 0; i < parts.count(); ++i)
+    rho[i] = largest > 0 ? std::max(std::hypot(a[2 * i], a[2 * i + 1]), 1e-6 * largest) : 1.0;
+  return rho;
+}
+
 SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
-                         const Eigen::VectorXd& level, double tau_cap) {
+                         const Eigen::VectorXd& level, double tau_cap, const Eigen::VectorXd& slack_scale) {
   const int E = parts.count(), tau = slack_index(m, parts);
   const bool iso = m == Measure::Isometric;
   SparseSocp p;
@@ -135,7 +148,7 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
       add_row(parts.A, 2 * i + 1, -ka * r1, row, t);
     }
     if (u_sign != 0) t.emplace_back(row, parts.num_x + i, -u_sign);
-    t.emplace_back(row, tau, -1.0);
+    t.emplace_back(row, tau, slack_scale.size() ? -slack_scale[i] : -1.0);
     h.push_back(ka * (r0 * parts.a0[2 * i] + r1 * parts.a0[2 * i + 1]) + head_const);
     const auto& M = tail_a ? parts.A : parts.B;
     const auto& o = tail_a ? parts.a0 : parts.b0;

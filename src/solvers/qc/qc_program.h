@@ -57,8 +57,18 @@ double K_of_k(double k);
 
 // The slack program for levels `level` (one per active element, in measure units: K for qc,
 // S for iso). Variables: x (num_x), then iso's u_T (one per active element), then tau.
+// Element T's cones are relaxed by tau * slack_scale[T] (empty: 1): any positive scales give
+// the same feasible levels (tau <= 0), and scales that make the slack comparable across the
+// elements make its optimum sensitive to the level, so that levels close below the optimum
+// are still certified (slack_scales).
 SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::VectorXd& frames,
-                         const Eigen::VectorXd& level, double tau_cap);
+                         const Eigen::VectorXd& level, double tau_cap, const Eigen::VectorXd& slack_scale = {});
+
+// The slack scales for frames taken from the map x: qc, |a_T| (the cone |b| <= k <a, r> is
+// homogeneous in the map's local scale, so the slack is measured relative to it: near the
+// optimum, tau then moves with k at a rate of about one, not |a_T| of the active elements);
+// at least 1e-6 of the largest. iso (levels of absolute size): 1.
+Eigen::VectorXd slack_scales(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x);
 int slack_index(Measure m, const ConformalParts& parts);  // index of tau among the variables
 // A starting vector for the slack program from the map x (iso: u_T = |a_T|, tau = 0).
 Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x);

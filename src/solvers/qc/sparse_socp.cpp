@@ -14,9 +14,7 @@ namespace strictmin::qc {
 
 struct SparseCholeskyCache::Impl {
   SparseCholesky cholesky{true};  // AMD: the slack's dense column goes last
-  SparseCholesky gram{true};      // G^T G, for corrected_dual_bound
-  Eigen::VectorXd gram_of;        // the values of the G it was factorised for
-  bool gram_ok = false;
+  SparseCholesky gram{true};      // G^T D G, for corrected_dual_bound
 };
 SparseCholeskyCache::SparseCholeskyCache() : impl_(new Impl) {}
 SparseCholeskyCache::~SparseCholeskyCache() { delete impl_; }
@@ -370,36 +368,54 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
 
 double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache) {
   constexpr double kNone = -std::numeric_limits<double>::infinity();
-  // 1. The residual and the least-norm correction dz = -G (G^T G)^{-1} r.
   std::unique_ptr<SparseCholeskyCache> own;
   if (!cache) {
     own = std::make_unique<SparseCholeskyCache>();
     cache = own.get();
   }
-  const Eigen::VectorXd r = p.c + p.G.transpose() * z;
-  SparseCholeskyCache::Impl& c = cache->impl();
-  SparseCholesky& chol = c.gram;
-  const Eigen::Map<const Eigen::VectorXd> values(p.G.valuePtr(), p.G.nonZeros());
-  if (c.gram_of.size() != values.size() || c.gram_of != values) {  // a new G: factorise G^T G
-    Eigen::SparseMatrix<double> gtg = p.G.transpose() * p.G;
+  const Cones cones(p);
+  SparseCholesky& chol = cache->impl().gram;
+  auto margin = [&](const Eigen::VectorXd& u, int i) {
+    const int o = cones.offset(i);
+    return u[o] - (cones.dim(i) > 1 ? tail_norm(u.data() + o, cones.dim(i)) : 0.0);
+  };
+  constexpr int kRounds = 3;
+  Eigen::VectorXd zc = z, d(p.G.rows());
+  for (int round = 0; round < kRounds; ++round) {
+    // 1. The metric: per cone its margin squared (z_i0 - |z_i1|)^2, so that the least
+    //    correction in it moves no cone by more than a fraction of its margin when it can.
+    for (int i = 0; i < cones.count(); ++i) {
+      const double m = margin(zc, i);
+      d.segment(cones.offset(i), cones.dim(i)).setConstant(std::clamp(m * m, 1e-200, 1e200));
+    }
+    // 2. The residual and the correction dz = -D G (G^T D G)^{-1} r.
+    const Eigen::VectorXd r = p.c + p.G.transpose() * zc;
+    Eigen::SparseMatrix<double> gtg = p.G.transpose() * d.asDiagonal() * p.G;
     double mx = 0;
     for (int j = 0; j < gtg.cols(); ++j) mx = std::max(mx, gtg.coeff(j, j));
     for (int j = 0; j < gtg.cols(); ++j) gtg.coeffRef(j, j) += 1e-14 * mx;
     if (!chol.analyzed()) chol.analyze(gtg);
-    c.gram_ok = chol.factorize(gtg);
-    c.gram_of = values;
+    if (!chol.factorize(gtg)) return kNone;
+    Eigen::VectorXd y = chol.solve(r);
+    y += chol.solve(r - p.G.transpose() * (d.asDiagonal() * (p.G * y)));  // one refinement step
+    zc -= d.asDiagonal() * (p.G * y);
+    // 3. Inside every cone: weak duality holds for the corrected z. Otherwise the heads of
+    //    the cones left are raised back inside (by twice what they missed) and the new
+    //    residual is corrected in the next round.
+    int out = 0;
+    double worst = 0;
+    for (int i = 0; i < cones.count(); ++i) {
+      const double m = margin(zc, i);
+      if (!(m >= 0)) {
+        ++out;
+        worst = std::min(worst, m);
+        zc[cones.offset(i)] += -2 * m;
+      }
+    }
+    if (out == 0) return -p.h.dot(zc);
+    if (!std::isfinite(worst)) return kNone;
   }
-  if (!c.gram_ok) return kNone;
-  Eigen::VectorXd y = chol.solve(r);
-  y += chol.solve(r - p.G.transpose() * (p.G * y));  // one refinement step
-  const Eigen::VectorXd zc = z - p.G * y;
-  // 2. Still inside every cone: weak duality holds for the corrected z.
-  const Cones cones(p);
-  for (int i = 0; i < cones.count(); ++i) {
-    const double* u = zc.data() + cones.offset(i);
-    if (!(u[0] >= (cones.dim(i) > 1 ? tail_norm(u, cones.dim(i)) : 0.0))) return kNone;
-  }
-  return -p.h.dot(zc);
+  return kNone;
 }
 
 }  // namespace strictmin::qc

@@ -70,14 +70,16 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
                                     SparseCholeskyCache* cache = nullptr);
 
 // A certified lower bound on the optimum from a dual iterate z that is only nearly feasible
-// (G^T z + c = r != 0): z is corrected to z + dz with dz = -G (G^T G)^{-1} r, so that
+// (G^T z + c = r != 0): z is corrected to z + dz with dz = -D G (G^T D G)^{-1} r, so that
 // G^T (z + dz) + c = 0 exactly (to round-off); when z + dz lies in the cones, weak duality
-// gives c^T x >= -h^T (z + dz) for every feasible x. Returns -inf when the corrected z
-// leaves the cones. One factorisation of G^T G (analysis kept in the cache).
+// gives c^T x >= -h^T (z + dz) for every feasible x. D holds each cone's margin squared,
+// (z_i0 - |z_i1|)^2: the least correction in that metric moves every cone by about the same
+// fraction of its margin, so that cones with small multipliers (far from active) stay inside.
+// Cones still left are raised back inside by twice their miss and the new residual corrected
+// again (3 rounds at most). Returns -inf when no round ends inside the cones. One
+// factorisation of G^T D G per round (analysis kept in the cache).
 double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache);
 
-// The symbolic analysis of the normal equations, kept across programs with the same G
-// pattern (the bisection's steps and frame updates change only values).
 class SparseCholeskyCache {
  public:
   SparseCholeskyCache();
