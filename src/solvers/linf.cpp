@@ -241,7 +241,22 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
   analysis.wait();
-  const MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+  MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+  std::string fallback_note;
+  if (ms.outcome.status == socp::IpmStatus::NumericalError && normal_equations &&
+      normal_equations->eliminates_equalities()) {
+    // The eliminated Newton systems lost definiteness (a seam node between elements whose
+    // scalings differ by many orders of magnitude cancels in Z^T H Z; seen on the moving
+    // regions of direct's levels): solve again with the equalities' penalty (kkt.h).
+    socp::IpmSettings penalty = settings;
+    penalty.eliminate_equalities = false;
+    const int first_iterations = ms.outcome.iterations;
+    normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, penalty);
+    ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+    result.iterations += first_iterations;
+    fallback_note = "the eliminated Newton systems could not be factored after " + std::to_string(first_iterations) +
+                    " iterations; solved again with the equalities' penalty";
+  }
   const BestSoFar& best = ms.best;
   result.iterations += ms.outcome.iterations;
   result.lower_bound = std::min(best.lower_bound, best.k);
@@ -256,6 +271,7 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   // 6. The status. Without any iterate meeting the bounds, the start (which meets them up to
   // the widening) is the map.
   decide(ms, options, widened, result);
+  if (!fallback_note.empty()) result.message += "; " + fallback_note;
   Eigen::MatrixXd X = p.with_free_dofs(std::isfinite(best.k) ? best.x : start.x);
 
   // 7. The least L2 map among the optima.
