@@ -10,25 +10,10 @@
 #include "strictmin/tasks/gparam.h"
 
 namespace strictmin::cli {
-namespace {
-
-// The 3 x 3 x 1 frame, its sides bulged outward by a smooth bump: the field can no longer be
-// parallel, so every map distorts somewhere.
-Mesh bulged_frame() {
-  Mesh m = make_frame_surface(4, 7);
-  for (int v = 0; v < m.num_vertices(); ++v) {
-    const double x = m.V(v, 0), y = m.V(v, 1), z = m.V(v, 2);
-    m.V(v, 2) = z + (z > 0.5 ? 1 : -1) * 0.25 * std::sin(M_PI * x / 3) * std::sin(M_PI * y / 3);
-  }
-  return m;
-}
-
-}  // namespace
-
 ReportSection write_gparam_demo_section(const std::string& dir, const ComparisonOptions& options,
                                         const OutputOptions& output, bool& all_solved) {
   namespace fs = std::filesystem;
-  const Mesh frame = bulged_frame();
+  const Mesh frame = make_bulged_frame_surface(4, 7);
   SectionInput in;
   in.id = "gparam";
   in.title = "Global parametrization: a closed genus-1 surface";

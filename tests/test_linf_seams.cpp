@@ -18,16 +18,6 @@ using namespace strictmin;
 
 namespace {
 
-// The genus-1 frame with its flat sides bulged (as strictmin demo's): every map distorts.
-Mesh bulged_frame() {
-  Mesh m = make_frame_surface(4, 7);
-  for (int v = 0; v < m.num_vertices(); ++v) {
-    const double x = m.V(v, 0), y = m.V(v, 1), z = m.V(v, 2);
-    m.V(v, 2) = z + (z > 0.5 ? 1 : -1) * 0.25 * std::sin(M_PI * x / 3) * std::sin(M_PI * y / 3);
-  }
-  return m;
-}
-
 Problem seamless(const Mesh& mesh) {
   GParamOptions o;
   o.solver.method = Method::L2;
@@ -79,7 +69,7 @@ void expect_same_optimum(const Problem& p, const std::string& name) {
 // columns (the seams' rows are independent), and the blocks are exact: quarter turns, and
 // at singular vertices (I - R)^-1 of a quarter turn's, so every entry is a multiple of 1/4.
 TEST(SeamNullSpace, SpansTheSeamsNullSpace) {
-  const Problem p = seamless(bulged_frame());
+  const Problem p = seamless(make_bulged_frame_surface(4, 7));
   const socp::ConeProgram prog = main_program(p);
   ASSERT_GT(prog.num_eq(), 0);
   const socp::BlockNullSpace z = socp::block_null_space(prog);
@@ -101,7 +91,7 @@ TEST(SeamNullSpace, SpansTheSeamsNullSpace) {
 
 // Equalities not in vertex blocks (a single row) are left to the penalty.
 TEST(SeamNullSpace, RefusesEqualitiesNotInBlocks) {
-  const Problem p = seamless(bulged_frame());
+  const Problem p = seamless(make_bulged_frame_surface(4, 7));
   socp::ConeProgram prog = main_program(p);
   prog.A = Eigen::SparseMatrix<double, Eigen::RowMajor>(prog.A.topRows(1));
   prog.beq = prog.beq.head(1);
@@ -109,7 +99,7 @@ TEST(SeamNullSpace, RefusesEqualitiesNotInBlocks) {
 }
 
 TEST(SeamElimination, SameOptimumAsThePenaltyOnTheBulgedFrame) {
-  expect_same_optimum(seamless(bulged_frame()), "bulged frame");
+  expect_same_optimum(seamless(make_bulged_frame_surface(4, 7)), "bulged frame");
 }
 
 TEST(SeamElimination, SameOptimumAsThePenaltyOnCow) {
@@ -121,7 +111,7 @@ TEST(SeamElimination, SameOptimumAsThePenaltyOnCow) {
 // The least-L2 map among the L-infinity optima (a quadratic objective: the eliminated
 // system carries Z^T P Z) agrees with the penalty's.
 TEST(SeamElimination, LeastL2AmongOptimaAsThePenalty) {
-  const Problem p = seamless(bulged_frame());
+  const Problem p = seamless(make_bulged_frame_surface(4, 7));
   LinfOptions eliminated, penalty;
   eliminated.minimize_l2_among_optimal = penalty.minimize_l2_among_optimal = true;
   penalty.eliminate_equalities = false;

@@ -1,5 +1,6 @@
 #include "strictmin/mesh/polycube.h"
 
+#include <cmath>
 #include <map>
 #include <random>
 #include <set>
@@ -71,6 +72,15 @@ Mesh make_frame_surface(int n, unsigned seed) {
     for (int y = 0; y < 3; ++y)
       if (x != 1 || y != 1) cubes.push_back({x, y, 0});
   return make_polycube(cubes, n, 1.0, seed);
+}
+
+Mesh make_bulged_frame_surface(int n, unsigned seed) {
+  Mesh m = make_frame_surface(n, seed);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.V(v, 0), y = m.V(v, 1), z = m.V(v, 2);
+    m.V(v, 2) = z + (z > 0.5 ? 1 : -1) * 0.25 * std::sin(M_PI * x / 3) * std::sin(M_PI * y / 3);
+  }
+  return m;
 }
 
 }  // namespace strictmin

@@ -20,4 +20,9 @@ Mesh make_polycube(const std::vector<std::array<int, 3>>& cubes, int n, double s
 Mesh make_cube_surface(int n, double side = 5.0, unsigned seed = 1);
 Mesh make_frame_surface(int n, unsigned seed = 1);
 
+// The frame with its flat top and bottom bulged outward by a smooth bump (0.25 high): the
+// field can no longer be parallel, so every seamless map distorts somewhere (the gparam
+// demo's and the tests' closed mesh of genus 1 with a non-trivial optimum).
+Mesh make_bulged_frame_surface(int n, unsigned seed = 1);
+
 }  // namespace strictmin

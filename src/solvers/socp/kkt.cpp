@@ -600,19 +600,8 @@ void NormalEquations::apply_normal(const Eigen::VectorXd& dx, double dk, Eigen::
     apply_zt(null_space_, p_.n, full, ox);
     return;
   }
-  PhaseTimer timer(timers_.apply_wall, timers_.apply_cpu);
-  ++timers_.applies;
-  Eigen::VectorXd mv, t2;
-  p_.apply_m(dx, p_.has_k ? dk : 0.0, false, mv);
-  apply_scaling(p_, *scaling_, ScalingOp::WInv2, mv, t2);
-  p_.apply_mt(t2, ox, ok);
-  if (p_.has_quad()) {
-    Eigen::VectorXd px;
-    p_.apply_p(dx, px);
-    ox += px;
-  }
+  apply_full(dx, dk, ox, ok);
   if (p_.num_eq() > 0) ox.noalias() += inv_rho_ * (at_ * (p_.A * dx));
-  if (!p_.has_k) ok = 0;
 }
 
 int NormalEquations::pcg(const Eigen::VectorXd& bx, double bk, double threshold, Eigen::VectorXd& x, double& k) const {
