@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "problems.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/tasks/gparam.h"
@@ -36,13 +37,7 @@ int main(int argc, char** argv) {
     GParamOptions o;
     o.solver.method = Method::L2;
     const GParamOutcome g = global_parametrize(mesh, o, argv[a]);
-    LinfOptions lo;
-    if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) lo.verbose = std::atoi(v);
-    if (lo.verbose)
-      lo.progress = [](const IterationRecord& r) {
-        std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,
-                     r.lower_bound, r.certified_gap, r.time_s);
-      };
+    LinfOptions lo = bench::linf_options_from_env();
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = process_cpu();
     if (std::getenv("STRICTMIN_LINF_PENALTY")) lo.eliminate_equalities = false;

@@ -34,17 +34,7 @@ namespace {
 using bench::bar_problem;
 using bench::square_problem;
 
-// STRICTMIN_LINF_VERBOSE=1|2 prints the solver's per-iteration lines and phase timers.
-LinfOptions bench_options() {
-  LinfOptions o;
-  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
-  if (o.verbose)
-    o.progress = [](const IterationRecord& r) {
-      std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,
-                   r.lower_bound, r.certified_gap, r.time_s);
-    };
-  return o;
-}
+LinfOptions bench_options() { return bench::linf_options_from_env(); }
 
 void run(benchmark::State& state, const Problem& p) {
   Result r;

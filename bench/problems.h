@@ -2,11 +2,14 @@
 // Problems shared by the benchmarks (header only: every bench_*.cpp is its own program).
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
 #include "strictmin/mesh/generators.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/linf.h"
 #include "strictmin/tasks/examples.h"
 
 namespace strictmin::bench {
@@ -40,6 +43,19 @@ inline Problem bar_problem(int n) {
   }
   p.fix(handles);
   return p;
+}
+
+// L-infinity options of the benchmarks: STRICTMIN_LINF_VERBOSE=1|2 prints the solver's
+// per-iteration lines and phase timers.
+inline LinfOptions linf_options_from_env() {
+  LinfOptions o;
+  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
+  if (o.verbose)
+    o.progress = [](const IterationRecord& r) {
+      std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,
+                   r.lower_bound, r.certified_gap, r.time_s);
+    };
+  return o;
 }
 
 }  // namespace strictmin::bench

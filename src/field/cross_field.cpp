@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 #include <utility>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -22,6 +23,14 @@ namespace {
 using Complex = std::complex<double>;
 
 Eigen::Vector3d row3(const Eigen::MatrixXd& M, int r) { return M.row(r).transpose(); }
+
+// Factors the field's Hermitian system and records the analysis and factorization times.
+void factorize_or_throw(HermitianCholesky& cholesky, const HermitianLower& A, const std::string& system,
+                        CrossField& out) {
+  if (!cholesky.factorize(A)) throw InputError("cross field: the " + system + " could not be factorized");
+  out.timing.analyze_s = cholesky.analyze_s;
+  out.timing.factorize_s = cholesky.factorize_s;
+}
 
 double edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, int e) {
   const double len2 = (mesh.V.row(g.edges(e, 1)) - mesh.V.row(g.edges(e, 0))).squaredNorm();
@@ -150,9 +159,7 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   out.timing.assemble_s = seconds_since(t0);
   SerialCholmodScope serial;
   HermitianCholesky cholesky;
-  if (!cholesky.factorize(A)) throw InputError("cross field: the connection Laplacian could not be factorized");
-  out.timing.analyze_s = cholesky.analyze_s;
-  out.timing.factorize_s = cholesky.factorize_s;
+  factorize_or_throw(cholesky, A, "connection Laplacian", out);
   t0 = std::chrono::steady_clock::now();
   // A fixed pseudo-random start: the field's global phase is that of its projection.
   std::mt19937 random(12345);
@@ -209,9 +216,7 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   out.timing.assemble_s = seconds_since(t0);
   SerialCholmodScope serial;
   HermitianCholesky cholesky;
-  if (!cholesky.factorize(A)) throw InputError("cross field: the curvature system could not be factorized");
-  out.timing.analyze_s = cholesky.analyze_s;
-  out.timing.factorize_s = cholesky.factorize_s;
+  factorize_or_throw(cholesky, A, "curvature system", out);
   out.u = normalize_per_face(cholesky.solve(rhs));
   out.iterations = 1;
   out.energy = field_energy(out.u, mesh, g, fr);
