@@ -140,7 +140,7 @@ BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, doub
   //    as far below the optimum as the tolerance allows, value - 0.999 w (w the tolerance's
   //    width); when that is undecided too, a witness between it and the upper end lowers the
   //    upper end, and with it the next closing level (at most kClosingSteps such tests).
-  constexpr int kClosingSteps = 6;
+  constexpr int kClosingSteps = 2;
   int closing_steps = 0;
   while (out.value - lo_certified > width() && out.steps < max_steps) {
     if (out.value - lo > width()) {
