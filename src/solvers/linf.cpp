@@ -242,14 +242,14 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
   analysis.wait();
   MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+  socp::IpmSettings penalty = settings;  // the fallback's (the normal equations keep a reference)
+  penalty.eliminate_equalities = false;
   std::string fallback_note;
   if (ms.outcome.status == socp::IpmStatus::NumericalError && normal_equations &&
       normal_equations->eliminates_equalities()) {
     // The eliminated Newton systems lost definiteness (a seam node between elements whose
     // scalings differ by many orders of magnitude cancels in Z^T H Z; seen on the moving
     // regions of direct's levels): solve again with the equalities' penalty (kkt.h).
-    socp::IpmSettings penalty = settings;
-    penalty.eliminate_equalities = false;
     const int first_iterations = ms.outcome.iterations;
     normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, penalty);
     ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);

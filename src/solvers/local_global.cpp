@@ -16,6 +16,7 @@
 #include "anderson.h"
 #include "global_step.h"
 #include "local_targets.h"
+#include "relax_sweep.h"
 #include "option_check.h"
 
 namespace strictmin {
@@ -241,9 +242,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   std::string why;
   if (!o.is_valid(&why)) throw InputError("local-global: " + why);
   if (!solver.is_valid(&why)) throw InputError("invalid solver options: " + why);
-  if ((o.no_flips || solver.relax.no_flips) && problem.image_dim != problem.domain_dim)
-    throw InputError("local-global: no_flips needs square Jacobians (planar triangles or tets); a triangle surface "
-                     "in 3D maps each triangle by a 3 by 2 Jacobian, which has no orientation sign");
+  relax_detail::check_no_flips(problem, o.no_flips || solver.relax.no_flips, "local-global");
   Problem p = problem;
   Result out;
   out.positions = X0;

@@ -237,9 +237,9 @@ double sweep_any(const SweepData& s, const Problem& p, Eigen::MatrixXd& X, Devia
   return sweep_dim<3, 2>(s, p, X, dev, accept_tolerance, max_distortion);
 }
 
-void check_no_flips(const Problem& p, bool no_flips) {
+void check_no_flips(const Problem& p, bool no_flips, const std::string& who) {
   if (no_flips && p.image_dim != p.domain_dim)
-    throw InputError("relax: no_flips needs square Jacobians (planar triangles or tets); a triangle surface in 3D "
+    throw InputError(who + ": no_flips needs square Jacobians (planar triangles or tets); a triangle surface in 3D "
                      "maps each triangle by a 3 by 2 Jacobian, which has no orientation sign");
 }
 

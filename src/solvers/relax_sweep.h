@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "strictmin/problem/problem.h"
@@ -53,7 +54,7 @@ void build(const Problem& p, SweepData& s);
 
 // Throws InputError when no_flips is asked for a problem whose Jacobians are not square (a
 // triangle surface in 3D: a 3 by 2 map has no sign of orientation, docs/arap.md).
-void check_no_flips(const Problem& p, bool no_flips);
+void check_no_flips(const Problem& p, bool no_flips, const std::string& who = "relax");
 
 // One sweep over every free vertex, colour by colour, moving X in place; dev is computed
 // from X first if dev.age < 0, then kept up to date. A vertex moves to its ring's minimax
