@@ -5,9 +5,10 @@
 //
 //   for frame iterations f = 1, 2, ...:
 //     r_T = a_T / |a_T| of the current map (the frames);
-//     bisection on the level (qc: k = (K-1)/(K+1), iso: S), each step a slack feasibility
-//     program solved by the interior-point method of solvers/qc/sparse_socp.h, warm-started
-//     from the last feasible map; the map of the lowest feasible level becomes current;
+//     qc: bisection on the level k = (K-1)/(K+1), each step a slack feasibility program
+//     solved by the interior-point method of solvers/qc/sparse_socp.h, warm-started from the
+//     last feasible map; the map of the lowest feasible level becomes current;
+//     iso: the least level S in one cone program (minimize S, solvers/qc/iso_level.h);
 //   stop when a frame iteration lowers the maximum by less than frame_tolerance.
 //
 // Guarantees: every map returned is orientation-preserving (det J > 0 on every triangle with
@@ -44,6 +45,10 @@ struct ConformalOptions {
   // Per-element fixed bounds in measure units (direct's levels; empty or negative: free).
   Eigen::VectorXd element_bounds;
   int max_ipm_iterations = 80;
+  // iso: each frame iteration's least level by one cone program (minimize S with the rotated
+  // cone v_T S >= 1, docs/measures.md "iso in one program") instead of a bisection; false:
+  // bisect as qc does (the two agree to the tolerance; kept for comparison).
+  bool iso_one_program = true;
   std::function<void(const IterationRecord&)> progress;  // after every frame iteration
 };
 

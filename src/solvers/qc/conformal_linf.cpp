@@ -8,6 +8,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/conformal.h"
 #include "solvers/qc/bisection.h"
+#include "solvers/qc/iso_level.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin {
@@ -53,7 +54,7 @@ std::string no_orientation_preserving_map() {
 std::string bracket_closed_undecided(const qc::BisectionOutcome& b, double tolerance) {
   char text[320];
   std::snprintf(text, sizeof text,
-                "reduced accuracy: the last bisection's bracket [%.10g, %.10g] is within %.3g only through a level the "
+                "reduced accuracy: the last level's bracket [%.10g, %.10g] is within %.3g only through a level the "
                 "feasibility test could not decide (the optimal slack is 0 there to the solver's accuracy); its "
                 "certified lower end is %.10g",
                 b.lower, b.value, tolerance, std::isnan(b.certified_lower) ? 1.0 : b.certified_lower);
@@ -142,7 +143,10 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     const double tolerance = last_improvement <= options.frame_tolerance
                                  ? options.bisection_tolerance
                                  : std::max(options.bisection_tolerance, std::min(1e-3, 0.1 * last_improvement));
-    qc::BisectionOutcome b = qc::bisect(setup, x, 1.0, kCap, tolerance, options.max_bisection_steps);
+    qc::BisectionOutcome b =
+        options.measure == Measure::Isometric && options.iso_one_program
+            ? qc::minimize_iso_level(setup, x, tolerance)
+            : qc::bisect(setup, x, 1.0, kCap, tolerance, options.max_bisection_steps);
     st.bisection_steps += b.steps;
     st.ipm_iterations += b.ipm_iterations;
     st.bisection_time_s += seconds_since(tf);

@@ -181,4 +181,106 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
   return p;
 }
 
+IsoProgram iso_program(const ConformalParts& parts, const Eigen::VectorXd& frames, const Eigen::VectorXd& bounds) {
+  // 1. Variables: x, u per active element, v per free one, S.
+  const int E = parts.count(), nx = parts.num_x;
+  IsoProgram out;
+  out.v_index.assign(E, -1);
+  int next = nx + E;
+  for (int i = 0; i < E; ++i)
+    if (!(bounds.size() && bounds[i] >= 0)) out.v_index[i] = next++;
+  out.s_index = next;
+  const int S = out.s_index;
+  // The map's variables in units of the rest pose's length: x = L y, with 1/L the RMS of the
+  // Jacobian's coefficients, so that the normal equations' columns have comparable scales.
+  double sum = 0;
+  for (int k = 0; k < parts.A.nonZeros(); ++k) sum += parts.A.valuePtr()[k] * parts.A.valuePtr()[k];
+  out.map_scale = sum > 0 ? 1.0 / std::sqrt(sum / static_cast<double>(parts.A.nonZeros())) : 1.0;
+  const double L = out.map_scale;
+  // 2. The cones, as G v + s = h (s = h - G v): head rows first, then the tails.
+  SparseSocp& p = out.program;
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> h;
+  int row = 0;
+  std::vector<double> per_s, constant;  // per cone: its head's bound (IsoProgram::head_bounds)
+  auto tail = [&](int i, bool tail_a) {
+    const auto& M = tail_a ? parts.A : parts.B;
+    const auto& o = tail_a ? parts.a0 : parts.b0;
+    for (int j = 0; j < 2; ++j) {
+      add_row(M, 2 * i + j, -L, row + 1 + j, t);
+      h.push_back(o[2 * i + j]);
+    }
+    p.dims.push_back(3);
+    row += 3;
+  };
+  for (int i = 0; i < E; ++i) {
+    const int u = nx + i, v = out.v_index[i];
+    const bool bounded = v < 0;
+    const double r0 = frames[2 * i], r1 = frames[2 * i + 1];
+    for (int k = 0; k < 3; ++k) per_s.push_back(bounded ? 0.0 : 1.0), constant.push_back(bounded ? bounds[i] : 0.0);
+    if (!bounded) per_s.push_back(2.0), constant.push_back(0.0);
+    // |a| <= u
+    t.emplace_back(row, u, -1.0);
+    h.push_back(0.0);
+    tail(i, true);
+    // |b| <= S - u (bounded: S_i - u)
+    t.emplace_back(row, u, 1.0);
+    if (bounded) {
+      h.push_back(bounds[i]);
+    } else {
+      t.emplace_back(row, S, -1.0);
+      h.push_back(0.0);
+    }
+    tail(i, false);
+    // |b| <= <a, r> - v (bounded: <a, r> - 1/S_i)
+    add_row(parts.A, 2 * i, -L * r0, row, t);
+    add_row(parts.A, 2 * i + 1, -L * r1, row, t);
+    if (!bounded) t.emplace_back(row, v, 1.0);
+    h.push_back(r0 * parts.a0[2 * i] + r1 * parts.a0[2 * i + 1] - (bounded ? 1.0 / bounds[i] : 0.0));
+    tail(i, false);
+    // v S >= 1: (v + S, v - S, 2) in the 3-cone
+    if (!bounded) {
+      t.emplace_back(row, v, -1.0), t.emplace_back(row, S, -1.0);
+      t.emplace_back(row + 1, v, -1.0), t.emplace_back(row + 1, S, 1.0);
+      h.push_back(0.0), h.push_back(0.0), h.push_back(2.0);
+      p.dims.push_back(3);
+      row += 3;
+    }
+  }
+  // S >= 1.
+  per_s.push_back(1.0), constant.push_back(0.0);
+  out.head_per_s = Eigen::Map<Eigen::VectorXd>(per_s.data(), static_cast<Eigen::Index>(per_s.size()));
+  out.head_const = Eigen::Map<Eigen::VectorXd>(constant.data(), static_cast<Eigen::Index>(constant.size()));
+  t.emplace_back(row, S, -1.0);
+  h.push_back(-1.0);
+  p.dims.push_back(1);
+  ++row;
+  p.G.resize(row, S + 1);
+  p.G.setFromTriplets(t.begin(), t.end());
+  p.h = Eigen::Map<Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
+  p.c = Eigen::VectorXd::Zero(S + 1);
+  p.c[S] = 1.0;
+  return out;
+}
+
+Eigen::VectorXd iso_start(const IsoProgram& program, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                          const Eigen::VectorXd& x, double s0) {
+  Eigen::VectorXd a, b;
+  evaluate_ab(parts, x, a, b);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(program.s_index + 1);
+  v.head(parts.num_x) = x / program.map_scale;
+  double largest = 0;
+  for (int i = 0; i < parts.count(); ++i) {
+    v[parts.num_x + i] = std::hypot(a[2 * i], a[2 * i + 1]);
+    const int vi = program.v_index[i];
+    if (vi < 0) continue;
+    v[vi] = a[2 * i] * frames[2 * i] + a[2 * i + 1] * frames[2 * i + 1] - std::hypot(b[2 * i], b[2 * i + 1]);
+    largest = std::max(largest, v[vi]);
+  }
+  for (int vi : program.v_index)
+    if (vi >= 0) v[vi] = std::max(v[vi], 1e-3 * largest);
+  v[program.s_index] = std::max(s0, 1.0);
+  return v;
+}
+
 }  // namespace strictmin::qc

@@ -73,4 +73,29 @@ int slack_index(Measure m, const ConformalParts& parts);  // index of tau among 
 // A starting vector for the slack program from the map x (iso: u_T = |a_T|, tau = 0).
 Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x);
 
+// iso for fixed frames as one program, no bisection (docs/measures.md, "iso in one program"):
+//   minimize S  subject to, for every free active element T,
+//     |a_T| <= u_T,  |b_T| <= S - u_T,  |b_T| <= <a_T, r_T> - v_T,  v_T S >= 1,
+//   the last a rotated cone, written as the 3-cone (v_T + S, v_T - S, 2) ((v+S)^2 - (v-S)^2 = 4vS);
+//   for the bounded elements (bounds[i] >= 0: direct's fixed levels S_i) the first three with
+//   S_i in place of S and 1/S_i in place of v_T; and S >= 1 (iso is never below 1; keeps S
+//   bounded when every element is bounded). Its optimum is the least level of the
+//   bisection's slack program (the same maps meet both at the same S), in one solve.
+// Variables: y = x / map_scale (num_x), u (one per active element), v (one per free active
+// element), S.
+struct IsoProgram {
+  SparseSocp program;
+  std::vector<int> v_index;  // per active element: its v's variable index, -1 when bounded
+  int s_index = 0;           // index of S among the variables
+  double map_scale = 1;      // the map's variables are y = x / map_scale (rest-pose length units)
+  // Per cone, its head's bound on the maps with S <= S_max: S_max * head_per_s + head_const
+  // (u, S - u, <a, r> - v <= S; v + S <= 2 S; a bounded element's heads <= S_i).
+  Eigen::VectorXd head_per_s, head_const;
+  Eigen::VectorXd head_bounds(double s_max) const { return s_max * head_per_s + head_const; }
+};
+IsoProgram iso_program(const ConformalParts& parts, const Eigen::VectorXd& frames, const Eigen::VectorXd& bounds);
+// A starting vector from the map x: u_T = |a_T|, v_T = <a_T, r_T> - |b_T| (at least 1e-3 of its largest), S = s0.
+Eigen::VectorXd iso_start(const IsoProgram& program, const ConformalParts& parts, const Eigen::VectorXd& frames,
+                          const Eigen::VectorXd& x, double s0);
+
 }  // namespace strictmin::qc

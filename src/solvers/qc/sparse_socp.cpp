@@ -136,7 +136,10 @@ class Normal {
       for (int a = 0, k = 0; a < nc; ++a)
         for (int b = 0; b <= a; ++b, ++k) values[slot[k]] += ib2 * (2.0 * pv[a] * pv[b] - gjg[k]);
     }
-    // 2. Regularised factorisation (raised on failure).
+    // 2. Regularised factorisation (raised on failure), each diagonal entry raised relative to
+    //    itself: the dense columns (tau, S) carry a diagonal many orders above the map's, and a
+    //    shift relative to the largest entry perturbed the map's columns enough that the dual
+    //    residual grew to 1e-8 near the optimum and no bound could be certified there.
     double mx = 0;
     for (int j : diag_) mx = std::max(mx, values[j]);
     if (!(mx > 0) || !std::isfinite(mx)) return false;
@@ -144,7 +147,7 @@ class Normal {
     for (size_t j = 0; j < diag_.size(); ++j) saved_[j] = values[diag_[j]];
     for (double delta = st_.regularization; delta < 1e-2; delta *= 100) {
       delta_ = delta;
-      for (size_t j = 0; j < diag_.size(); ++j) values[diag_[j]] = saved_[j] + delta * mx + 1e-300;
+      for (size_t j = 0; j < diag_.size(); ++j) values[diag_[j]] = saved_[j] * (1 + delta) + 1e-6 * delta * mx + 1e-300;
       if (!chol_.analyzed()) chol_.analyze(h_);
       if (chol_.factorize(h_)) return true;
     }
@@ -366,7 +369,8 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
   return out;
 }
 
-double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache) {
+double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache,
+                            const Eigen::VectorXd& head_bounds) {
   constexpr double kNone = -std::numeric_limits<double>::infinity();
   std::unique_ptr<SparseCholeskyCache> own;
   if (!cache) {
@@ -380,6 +384,7 @@ double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, Spars
     return u[o] - (cones.dim(i) > 1 ? tail_norm(u.data() + o, cones.dim(i)) : 0.0);
   };
   constexpr int kRounds = 3;
+  double best = kNone;
   Eigen::VectorXd zc = z, d(p.G.rows());
   for (int round = 0; round < kRounds; ++round) {
     // 1. The metric: per cone its margin squared (z_i0 - |z_i1|)^2, so that the least
@@ -395,27 +400,33 @@ double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, Spars
     for (int j = 0; j < gtg.cols(); ++j) mx = std::max(mx, gtg.coeff(j, j));
     for (int j = 0; j < gtg.cols(); ++j) gtg.coeffRef(j, j) += 1e-14 * mx;
     if (!chol.analyzed()) chol.analyze(gtg);
-    if (!chol.factorize(gtg)) return kNone;
+    if (!chol.factorize(gtg)) return best;
     Eigen::VectorXd y = chol.solve(r);
     y += chol.solve(r - p.G.transpose() * (d.asDiagonal() * (p.G * y)));  // one refinement step
     zc -= d.asDiagonal() * (p.G * y);
     // 3. Inside every cone: weak duality holds for the corrected z. Otherwise the heads of
     //    the cones left are raised back inside (by twice what they missed) and the new
     //    residual is corrected in the next round.
+    const double raw = -p.h.dot(zc);  // z as corrected: its residual is zero
     int out = 0;
-    double worst = 0;
+    double worst = 0, missed = 0;  // sum of the misses times their heads' bounds
     for (int i = 0; i < cones.count(); ++i) {
       const double m = margin(zc, i);
       if (!(m >= 0)) {
         ++out;
         worst = std::min(worst, m);
+        missed -= m * (head_bounds.size() ? head_bounds[i] : 0.0);
         zc[cones.offset(i)] += -2 * m;
       }
     }
-    if (out == 0) return -p.h.dot(zc);
-    if (!std::isfinite(worst)) return kNone;
+    if (out == 0) return std::max(best, raw);
+    if (!std::isfinite(worst)) return best;
+    // 4. With bounds B_i on the heads: z raised by exactly its misses (Delta, on the heads)
+    //    is in the cones, and for every feasible w, c^T w >= -h^T z - Delta^T s(w) >=
+    //    raw - sum_i B_i miss_i.
+    if (head_bounds.size() && std::isfinite(missed)) best = std::max(best, raw - missed);
   }
-  return kNone;
+  return best;
 }
 
 }  // namespace strictmin::qc

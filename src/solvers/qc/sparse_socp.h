@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,7 +36,7 @@ struct SparseSocpSettings {
   double gap_tolerance = 1e-9;          // relative: gap <= tol * max(1, |pobj|)
   double feasibility_tolerance = 1e-9;  // relative primal and dual residuals
   double step_fraction = 0.99;
-  double regularization = 1e-13;        // relative to the largest diagonal entry
+  double regularization = 1e-13;        // each diagonal entry raised by this fraction of itself (and 1e-6 of it of the largest)
   int refinement_steps = 3;             // iterative refinement of each normal solve
   bool verbose = false;                 // one line per iteration on stderr
 };
@@ -78,7 +79,13 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
 // Cones still left are raised back inside by twice their miss and the new residual corrected
 // again (3 rounds at most). Returns -inf when no round ends inside the cones. One
 // factorisation of G^T D G per round (analysis kept in the cache).
-double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache);
+// head_bounds B (one per cone, or empty): cone i's head s_i0 is <= B_i on every feasible x
+// that matters (the caller's: e.g. those with an objective no larger than a known value, see
+// iso_level); then a corrected z still out of some cones also bounds: raised by exactly its
+// misses it is in the cones, and c^T x >= -h^T z - sum_i B_i miss_i for those x (the best
+// over the rounds is returned).
+double corrected_dual_bound(const SparseSocp& p, const Eigen::VectorXd& z, SparseCholeskyCache* cache,
+                            const Eigen::VectorXd& head_bounds = Eigen::VectorXd());
 
 class SparseCholeskyCache {
  public:

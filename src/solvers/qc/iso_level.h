@@ -1,0 +1,17 @@
+#pragma once
+// The least iso level for fixed frames in one cone program (qc_program.h: iso_program)
+// instead of a bisection over feasibility tests: minimize S directly, its certified lower
+// bound from the dual (sparse_socp.h: corrected_dual_bound). Falls back to the bisection
+// (bisection.h) when the program does not converge to a certified optimum.
+#include <Eigen/Core>
+
+#include "solvers/qc/bisection.h"
+
+namespace strictmin::qc {
+
+// From the map x0 (feasible for the frames: a finite free frame value), the map of least
+// largest free frame value for setup's frames and bounds, to tolerance * max(1, value) with
+// a certified lower end (BisectionOutcome's fields as bisect's; steps counts cone programs).
+BisectionOutcome minimize_iso_level(const BisectionSetup& setup, const Eigen::VectorXd& x0, double tolerance);
+
+}  // namespace strictmin::qc
