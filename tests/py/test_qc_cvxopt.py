@@ -19,6 +19,11 @@ CVXOPT's conelp solves the same program. Checked:
   - the certificate is THERE wherever the level is infeasible by a margin the bisection relies
     on: CVXOPT's tau >= 1e-7, including levels 1e-5 and 1e-6 (relative) below the optimal
     level L*, found here by bisection with CVXOPT (a missing certificate fails the check).
+And the iso level in one program (qc_tool's iso-min: minimize S with the rotated cone
+v_T S >= 1, qc_program.h: iso_program): our optimum S agrees with CVXOPT's on the same program
+to 1e-7, our certified bound lies below CVXOPT's optimum and within 1e-6 of it, and both equal
+the least level L* of the slack program found by the CVXOPT bisection above (to its 1e-8):
+the one program and the bisection answer the same question.
 Exit code 77 (skip) when cvxopt is missing.
 """
 import json
@@ -90,8 +95,10 @@ CASES = [
     (6, 0.2, "iso", 1.2),
     (6, 0.2, "iso", 2.0),
 ]
+STARS = {}
 for measure, lo, hi in (("qc", 1.3, 2.5), ("iso", 1.2, 2.0)):  # infeasible, feasible (above)
     star = optimal_level(6, 0.2, measure, lo, hi)
+    STARS[measure] = star
     print("%s: optimal level of the L2 map's frames L* = %.10f (CVXOPT bisection)" % (measure, star))
     CASES += [(6, 0.2, measure, star * (1 - 1e-5)), (6, 0.2, measure, star * (1 - 1e-6)),
               (6, 0.2, measure, star * (1 + 1e-6))]
@@ -111,4 +118,16 @@ for cells, shift, measure, level in CASES:
           (measure, cells, shift, level, p["pobj"], p["iterations"], p["status"],
            "none" if bound is None else "%+.6e" % bound, theirs, status, "ok" if ok else "MISMATCH", why))
     failures += 0 if ok else 1
+# The iso level in one program.
+p = ours(6, 0.2, "iso-min", 0.0)
+theirs, status = cvxopt_tau(p)  # the program's optimum (its objective is S)
+bound = p["corrected_bound"]
+agree = status == "optimal" and abs(p["pobj"] - theirs) <= 1e-7 * theirs
+valid = bound is not None and theirs - 1e-6 <= bound <= theirs + 1e-9
+same = abs(theirs - STARS["iso"]) <= 2e-8 * theirs
+ok = agree and valid and same
+print("iso one program: ours S %.10f (%d iterations, %s), certified >= %s  cvxopt %.10f (%s)  bisection L* %.10f  %s" %
+      (p["pobj"], p["iterations"], p["status"], "none" if bound is None else "%.10f" % bound, theirs, status,
+       STARS["iso"], "ok" if ok else "MISMATCH"))
+failures += 0 if ok else 1
 sys.exit(1 if failures else 0)

@@ -5,6 +5,9 @@
 //
 //   qc_tool CELLS SHIFT MEASURE LEVEL [--out FILE]
 // MEASURE: qc or iso; LEVEL: K (qc) or S (iso) for every element; frames from the L2 map.
+// MEASURE iso-min: the iso level program instead (qc_program.h: iso_program, minimize S; LEVEL
+// ignored), solved with iso_level.cpp's settings; "pobj" is then its optimum S and
+// "corrected_bound" the certified bound (with the heads' bounds at S_max = our optimum).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,25 +38,32 @@ int main(int argc, char** argv) {
   const std::string out = argc >= 7 && std::string(argv[5]) == "--out" ? argv[6] : "";
   // 1. The problem, the L2 map, its frames, the slack program at the level.
   const Problem p = example_problem(make_square_example(cells, shift));
-  const Measure m = measure == "iso" ? Measure::Isometric : Measure::Quasiconformal;
+  const bool iso_min = measure == "iso-min";
+  const Measure m = measure == "iso" || iso_min ? Measure::Isometric : Measure::Quasiconformal;
   const qc::ConformalParts parts = qc::conformal_parts(p);
   const Eigen::VectorXd x = p.free_dofs(solve_l2(p).positions);
   const Eigen::VectorXd frames = qc::frames_of(parts, x);
   const Eigen::VectorXd levels = Eigen::VectorXd::Constant(parts.count(), level);
-  const qc::SparseSocp prog =
-      qc::slack_program(m, parts, frames, levels, 1.0, qc::slack_scales(m, parts, x));  // as the bisection's
+  const qc::IsoProgram iso = qc::iso_program(parts, frames, Eigen::VectorXd());
+  const qc::SparseSocp prog = iso_min ? iso.program
+                                      : qc::slack_program(m, parts, frames, levels, 1.0,
+                                                          qc::slack_scales(m, parts, x));  // as the bisection's
   // 2. Solved with the bisection's settings, without its early stop; the certificate as the
   //    bisection tries it: the best corrected dual bound over the iterates with a positive
   //    slack and the gap below it.
   qc::SparseSocpSettings settings = qc::feasibility_settings(80);
   settings.verbose = std::getenv("QC_TOOL_VERBOSE") != nullptr;
   double bound = -std::numeric_limits<double>::infinity();
+  if (iso_min) settings.gap_tolerance = 1e-12;
   auto monitor = [&](const qc::SparseSocpIterate& it) {
+    if (iso_min) return false;
     if (it.pobj > 0 && it.gap < it.pobj && it.dres <= 1e-4)
       bound = std::max(bound, qc::corrected_dual_bound(prog, *it.z, nullptr));
     return false;
   };
-  const qc::SparseSocpOutcome r = qc::solve_sparse_socp(prog, qc::slack_start(m, parts, x), settings, monitor);
+  const double start_value = qc::frame_values(m, parts, frames, x).maxCoeff();
+  const Eigen::VectorXd start = iso_min ? qc::iso_start(iso, parts, frames, x, start_value) : qc::slack_start(m, parts, x);
+  const qc::SparseSocpOutcome r = qc::solve_sparse_socp(prog, start, settings, monitor);
   // 3. The dump.
   nlohmann::json j;
   std::vector<int> rows, cols;
@@ -75,7 +85,8 @@ int main(int argc, char** argv) {
   j["dobj"] = r.dobj;
   j["converged"] = r.status == qc::SparseSocpStatus::Converged;
   j["iterations"] = r.iterations;
-  bound = std::max(bound, qc::corrected_dual_bound(prog, r.z, nullptr));
+  bound = std::max(bound, iso_min ? std::min(r.pobj, qc::corrected_dual_bound(prog, r.z, nullptr, iso.head_bounds(r.pobj)))
+                                  : qc::corrected_dual_bound(prog, r.z, nullptr));
   if (std::isfinite(bound))
     j["corrected_bound"] = bound;
   else

@@ -1,8 +1,9 @@
 #pragma once
 // The least iso level for fixed frames in one cone program (qc_program.h: iso_program)
 // instead of a bisection over feasibility tests: minimize S directly, its certified lower
-// bound from the dual (sparse_socp.h: corrected_dual_bound). Falls back to the bisection
-// (bisection.h) when the program does not converge to a certified optimum.
+// bound from the dual (sparse_socp.h: corrected_dual_bound). When the program stops short of
+// a certified optimum, the bisection's closing tests (bisection.h: test_level) just below the
+// best map's value decide the bracket, or leave it closed only through an undecided level.
 #include <Eigen/Core>
 
 #include "solvers/qc/bisection.h"
