@@ -159,13 +159,24 @@ class Normal {
     cones_.apply(*sc_, Cones::Op::WInv, u, t);
     cones_.apply(*sc_, Cones::Op::WInv, t, out);
   }
+  // Iterative refinement until the residual reaches round-off or stops falling (by half per
+  // step; a step that raised it is undone).
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
-    Eigen::VectorXd x = chol_.solve(r), w;
-    for (int k = 0; k < st_.refinement_steps; ++k) {
+    Eigen::VectorXd x = chol_.solve(r), w, previous;
+    const double scale = std::max(1e-300, max_abs(r));
+    double last = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= st_.refinement_steps; ++k) {
       winv2(p_.G * x, w);
       const Eigen::VectorXd res = r - p_.G.transpose() * w;
-      last_residual_ = max_abs(res) / std::max(1e-300, max_abs(r));
-      if (max_abs(res) <= 1e-15 * std::max(1.0, max_abs(r))) break;
+      const double size = max_abs(res);
+      if (size > last) {  // the last step made it worse
+        x = previous;
+        break;
+      }
+      last_residual_ = size / scale;
+      if (size <= 1e-15 * std::max(1.0, max_abs(r)) || size > 0.5 * last || k == st_.refinement_steps) break;
+      last = size;
+      previous = x;
       x += chol_.solve(res);
     }
     return x;
