@@ -51,9 +51,10 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
   //    dual bound on the slack with a small dual residual.
   auto monitor = [&](const SparseSocpIterate& it) {
     double value = 0;
-    if (meets(s, level, it.x->head(nx), value)) {
+    const Eigen::VectorXd x = s.parts->map_scale * it.x->head(nx);
+    if (meets(s, level, x, value)) {
       out.verdict = Verdict::Feasible;
-      out.x = it.x->head(nx);
+      out.x = x;
       out.value = value;
       return true;
     }

@@ -39,7 +39,7 @@ BisectionOutcome minimize_iso_level(const BisectionSetup& s, const Eigen::Vector
   auto monitor = [&](const SparseSocpIterate& it) {
     if (!(it.gap <= tolerance * std::max(1.0, std::abs(it.pobj)) && it.pres <= 1e-8 && it.dres <= 1e-5))
       return false;
-    const Eigen::VectorXd x = prog.map_scale * it.x->head(nx);
+    const Eigen::VectorXd x = s.parts->map_scale * it.x->head(nx);
     const double value = free_max(s, x);
     if (std::isfinite(value) && value < out.value && meets_bounds(s, x)) {
       out.x = x;

@@ -62,6 +62,10 @@ ConformalParts conformal_parts(const Problem& p) {
   out.B.resize(2 * E, out.num_x);
   out.A.setFromTriplets(ta.begin(), ta.end());
   out.B.setFromTriplets(tb.begin(), tb.end());
+  // 5. The programs' length unit.
+  double sum = 0;
+  for (int k = 0; k < out.A.nonZeros(); ++k) sum += out.A.valuePtr()[k] * out.A.valuePtr()[k];
+  out.map_scale = sum > 0 ? 1.0 / std::sqrt(sum / static_cast<double>(out.A.nonZeros())) : 1.0;
   return out;
 }
 
@@ -110,7 +114,7 @@ int slack_index(Measure m, const ConformalParts& parts) {
 
 Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen::VectorXd& x) {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(slack_index(m, parts) + 1);
-  v.head(parts.num_x) = x;
+  v.head(parts.num_x) = x / parts.map_scale;
   if (m == Measure::Isometric) {
     Eigen::VectorXd a, b;
     evaluate_ab(parts, x, a, b);
@@ -135,6 +139,7 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
                          const Eigen::VectorXd& level, double tau_cap, const Eigen::VectorXd& slack_scale) {
   const int E = parts.count(), tau = slack_index(m, parts);
   const bool iso = m == Measure::Isometric;
+  const double L = parts.map_scale;  // x = L y
   SparseSocp p;
   std::vector<Eigen::Triplet<double>> t;
   std::vector<double> h;
@@ -144,8 +149,8 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
   auto cone = [&](int i, double ka, double head_const, int u_sign, bool tail_a) {
     const double r0 = frames[2 * i], r1 = frames[2 * i + 1];
     if (ka != 0) {
-      add_row(parts.A, 2 * i, -ka * r0, row, t);
-      add_row(parts.A, 2 * i + 1, -ka * r1, row, t);
+      add_row(parts.A, 2 * i, -L * ka * r0, row, t);
+      add_row(parts.A, 2 * i + 1, -L * ka * r1, row, t);
     }
     if (u_sign != 0) t.emplace_back(row, parts.num_x + i, -u_sign);
     t.emplace_back(row, tau, slack_scale.size() ? -slack_scale[i] : -1.0);
@@ -153,7 +158,7 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
     const auto& M = tail_a ? parts.A : parts.B;
     const auto& o = tail_a ? parts.a0 : parts.b0;
     for (int j = 0; j < 2; ++j) {
-      add_row(M, 2 * i + j, -1.0, row + 1 + j, t);
+      add_row(M, 2 * i + j, -L, row + 1 + j, t);
       h.push_back(o[2 * i + j]);
     }
     p.dims.push_back(3);
@@ -191,12 +196,7 @@ IsoProgram iso_program(const ConformalParts& parts, const Eigen::VectorXd& frame
     if (!(bounds.size() && bounds[i] >= 0)) out.v_index[i] = next++;
   out.s_index = next;
   const int S = out.s_index;
-  // The map's variables in units of the rest pose's length: x = L y, with 1/L the RMS of the
-  // Jacobian's coefficients, so that the normal equations' columns have comparable scales.
-  double sum = 0;
-  for (int k = 0; k < parts.A.nonZeros(); ++k) sum += parts.A.valuePtr()[k] * parts.A.valuePtr()[k];
-  out.map_scale = sum > 0 ? 1.0 / std::sqrt(sum / static_cast<double>(parts.A.nonZeros())) : 1.0;
-  const double L = out.map_scale;
+  const double L = parts.map_scale;  // x = L y
   // 2. The cones, as G v + s = h (s = h - G v): head rows first, then the tails.
   SparseSocp& p = out.program;
   std::vector<Eigen::Triplet<double>> t;
@@ -268,7 +268,7 @@ Eigen::VectorXd iso_start(const IsoProgram& program, const ConformalParts& parts
   Eigen::VectorXd a, b;
   evaluate_ab(parts, x, a, b);
   Eigen::VectorXd v = Eigen::VectorXd::Zero(program.s_index + 1);
-  v.head(parts.num_x) = x / program.map_scale;
+  v.head(parts.num_x) = x / parts.map_scale;
   double largest = 0;
   for (int i = 0; i < parts.count(); ++i) {
     v[parts.num_x + i] = std::hypot(a[2 * i], a[2 * i + 1]);

@@ -31,6 +31,10 @@ struct ConformalParts {
   Eigen::SparseMatrix<double, Eigen::RowMajor> A, B;  // 2 rows per active element
   Eigen::VectorXd a0, b0;                     // offsets (the fixed vertices' share)
   int num_x = 0;
+  // The cone programs' map variables are y = x / map_scale, in units of the rest pose's
+  // length (1/map_scale = the RMS of A's coefficients), so that the normal equations' map
+  // columns have comparable scales whatever the mesh's units.
+  double map_scale = 1;
   int count() const { return static_cast<int>(element.size()); }
 };
 
@@ -56,7 +60,7 @@ double k_of_K(double K);
 double K_of_k(double k);
 
 // The slack program for levels `level` (one per active element, in measure units: K for qc,
-// S for iso). Variables: x (num_x), then iso's u_T (one per active element), then tau.
+// S for iso). Variables: y = x / parts.map_scale (num_x), then iso's u_T (one per active element), then tau.
 // Element T's cones are relaxed by tau * slack_scale[T] (empty: 1): any positive scales give
 // the same feasible levels (tau <= 0), and scales that make the slack comparable across the
 // elements make its optimum sensitive to the level, so that levels close below the optimum
@@ -81,13 +85,12 @@ Eigen::VectorXd slack_start(Measure m, const ConformalParts& parts, const Eigen:
 //   S_i in place of S and 1/S_i in place of v_T; and S >= 1 (iso is never below 1; keeps S
 //   bounded when every element is bounded). Its optimum is the least level of the
 //   bisection's slack program (the same maps meet both at the same S), in one solve.
-// Variables: y = x / map_scale (num_x), u (one per active element), v (one per free active
-// element), S.
+// Variables: y = x / parts.map_scale (num_x), u (one per active element), v (one per free
+// active element), S.
 struct IsoProgram {
   SparseSocp program;
   std::vector<int> v_index;  // per active element: its v's variable index, -1 when bounded
   int s_index = 0;           // index of S among the variables
-  double map_scale = 1;      // the map's variables are y = x / map_scale (rest-pose length units)
   // Per cone, its head's bound on the maps with S <= S_max: S_max * head_per_s + head_const
   // (u, S - u, <a, r> - v <= S; v + S <= 2 S; a bounded element's heads <= S_i).
   Eigen::VectorXd head_per_s, head_const;
