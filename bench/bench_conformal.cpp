@@ -6,6 +6,9 @@
 //   QcLinf/N, QcDirect/N: the whole qc linf / direct (delta_k 1e-2) from the L2 map;
 //   QcLinfDisk, QcDirectDisk: the same on ../shared/data/disk/dragon.obj (10,000 triangles),
 //                   parametrized from Tutte with two pins (tasks/param.h).
+//   IsoFrames/N/P:  one iso frame iteration from the L2 map (bracket 1e-6), P = 1: the level
+//                   in one program (iso_level.h), P = 0: by bisection;
+//   IsoLinf/N, IsoLinfDisk: the whole iso linf (square from L2; dragon from Tutte).
 // Counters: triangles, bisection steps, frame iterations, interior-point iterations, K.
 // Each runs once (Iterations(1)): the larger ones take minutes on 2 cores.
 #include <benchmark/benchmark.h>
@@ -76,6 +79,33 @@ void QcFrames(benchmark::State& state) {
   }
 }
 
+void IsoFrames(benchmark::State& state) {
+  const Problem p = bench::square_problem(static_cast<int>(state.range(0)));
+  const Eigen::MatrixXd start = solve_l2(p).positions;
+  ConformalOptions o;
+  o.measure = Measure::Isometric;
+  o.iso_one_program = state.range(1) == 1;
+  o.max_frame_iterations = 1;
+  o.bisection_tolerance = 1e-6;
+  for (auto _ : state) {
+    ConformalStats st;
+    const Result r = solve_conformal_linf(p, start, o, &st);
+    report(state, p, r, st);
+  }
+}
+
+void IsoLinf(benchmark::State& state) {
+  const Problem p = bench::square_problem(static_cast<int>(state.range(0)));
+  const Eigen::MatrixXd start = solve_l2(p).positions;
+  ConformalOptions o;
+  o.measure = Measure::Isometric;
+  for (auto _ : state) {
+    ConformalStats st;
+    const Result r = solve_conformal_linf(p, start, o, &st);
+    report(state, p, r, st);
+  }
+}
+
 void QcLinf(benchmark::State& state) {
   const Problem p = bench::square_problem(static_cast<int>(state.range(0)));
   const Eigen::MatrixXd start = solve_l2(p).positions;
@@ -100,7 +130,7 @@ void QcDirect(benchmark::State& state) {
   }
 }
 
-void Disk(benchmark::State& state, Method method) {
+void Disk(benchmark::State& state, Method method, Measure measure = Measure::Quasiconformal) {
   const std::string path = std::string(STRICTMIN_SHARED_DATA) + "/disk/dragon.obj";
   if (!std::filesystem::exists(path)) {
     state.SkipWithError("../shared/data/disk/dragon.obj is absent");
@@ -108,7 +138,7 @@ void Disk(benchmark::State& state, Method method) {
   }
   const Mesh mesh = read_mesh(path);
   ParamOptions o;
-  o.measure = Measure::Quasiconformal;
+  o.measure = measure;
   o.solver.method = method;
   o.solver.direct.delta_k = 1e-2;
   o.solver.direct.k_min = 1.0;
@@ -120,6 +150,7 @@ void Disk(benchmark::State& state, Method method) {
 }
 void QcLinfDisk(benchmark::State& state) { Disk(state, Method::Linf); }
 void QcDirectDisk(benchmark::State& state) { Disk(state, Method::Direct); }
+void IsoLinfDisk(benchmark::State& state) { Disk(state, Method::Linf, Measure::Isometric); }
 
 }  // namespace
 
@@ -129,4 +160,7 @@ BENCHMARK(QcLinf)->Arg(71)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(QcLinfDisk)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(QcDirect)->Arg(71)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(QcDirectDisk)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(IsoFrames)->Args({71, 1})->Args({71, 0})->Args({158, 1})->Args({158, 0})->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(IsoLinf)->Arg(71)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(IsoLinfDisk)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_MAIN();

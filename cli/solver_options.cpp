@@ -53,6 +53,10 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
                 "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
       ->capture_default_str()
       ->check(at_least(0));
+  g->add_option("--frame-iterations", a.frame_iterations,
+                "qc/iso: cap on frame iterations (each a level program or bisection for the current frames; >= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
   g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this (>= 1)")
       ->capture_default_str()
       ->check(at_least(1));
@@ -105,6 +109,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.direct.level_gap = a.level_gap;
   o.direct.moving_rings = a.moving_rings;
   o.exact.max_elements = a.exact_max_elements;
+  o.frame_iterations = a.frame_iterations;
   if (!out.quiet) {
     o.linf.progress = [](const IterationRecord& r) { print_iteration("  linf  iter", r); };
     o.lp.progress = [](const IterationRecord& r) { print_iteration("  lp    iter", r); };

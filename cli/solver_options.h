@@ -30,6 +30,8 @@ struct SolverArgs {
   double level_gap = -1;  // direct: relative gap of the levels after the first (-1: delta_k / 100)
   int moving_rings = 2;   // direct: vertices within this many rings of the free elements move (0: all)
   int exact_max_elements = 3000;
+  // qc, iso
+  int frame_iterations = 50;
 };
 
 void add_solver_options(CLI::App& cmd, SolverArgs& args);

@@ -14,6 +14,7 @@ Result run_conformal_method(const Problem& problem, const Eigen::MatrixXd& start
   ConformalOptions c;
   c.measure = measure;
   c.bisection_tolerance = std::max(options.linf.gap_tolerance, 1e-10);
+  c.max_frame_iterations = options.frame_iterations;
   c.progress = options.linf.progress;
   // 2. The method.
   switch (options.method) {

@@ -47,6 +47,7 @@ bool SolverOptions::is_valid(std::string* why) const {
             "relax_init must be l2, lp, irls or linf (got " + method_name(relax_init) + ")")
       .nested("direct", direct)
       .nested("exact", exact)
+      .that(frame_iterations >= 1, "frame_iterations must be >= 1 (got " + std::to_string(frame_iterations) + ")")
       .ok();
 }
 

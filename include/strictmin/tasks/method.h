@@ -28,6 +28,9 @@ struct SolverOptions {
   Method relax_init = Method::Linf;  // relax starts from this method's result (not relax itself)
   DirectOptions direct;  // with linf's tolerances for every level
   ExactOptions exact;    // with linf's tolerances for every level
+  // --measure qc / iso (conformal.h): the cap on frame iterations (>= 1); their bracket is
+  // linf.gap_tolerance (relative).
+  int frame_iterations = 50;
 
   // Every nested options struct valid and relax_init one of l2, lp, irls, linf; otherwise
   // false with the reason (prefixed by the struct: "direct.delta_k must be > 0 (got 0)").
