@@ -144,7 +144,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
                                  ? options.bisection_tolerance
                                  : std::max(options.bisection_tolerance, std::min(1e-3, 0.1 * last_improvement));
     qc::BisectionOutcome b =
-        options.measure == Measure::Isometric && options.iso_one_program
+        options.measure == Measure::Isometric && options.iso_one_program && std::isfinite(current)
             ? qc::minimize_iso_level(setup, x, tolerance)
             : qc::bisect(setup, x, 1.0, kCap, tolerance, options.max_bisection_steps);
     st.bisection_steps += b.steps;

@@ -10,9 +10,10 @@
 
 namespace strictmin::qc {
 
-// From the map x0 (feasible for the frames: a finite free frame value), the map of least
-// largest free frame value for setup's frames and bounds, to tolerance * max(1, value) with
-// a certified lower end (BisectionOutcome's fields as bisect's; steps counts cone programs).
+// From the map x0 (feasible for the frames: a finite free frame value; the caller bisects
+// otherwise), the map of least largest free frame value for setup's frames and bounds, to
+// tolerance * max(1, value) with a certified lower end (BisectionOutcome's fields as
+// bisect's; steps counts cone programs).
 BisectionOutcome minimize_iso_level(const BisectionSetup& setup, const Eigen::VectorXd& x0, double tolerance);
 
 }  // namespace strictmin::qc
