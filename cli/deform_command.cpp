@@ -101,7 +101,7 @@ void add_deform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--measure", args->measure,
                   "fd (field deviation ||J - I||), arap or asap (local-global iterations around the method), qc "
                   "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)): planar meshes, methods l2 (the L2 fd start map), "
-                  "linf, direct; bisection over convex cones, never a flipped triangle")
+                  "linf, direct; convex cones around per-triangle frames (qc by bisection, iso one program per frame set), never a flipped triangle")
       ->capture_default_str();
   cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
   add_local_global_options(*cmd, args->lg);

@@ -105,7 +105,7 @@ void add_param_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--measure", args->measure,
                   "arap or asap (local-global iterations around the method), fd (frames from the starting map), qc "
                   "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)) with methods l2 (the Tutte/LSCM start), linf, "
-                  "direct: bisection over convex cones, never a flipped triangle")
+                  "direct: convex cones around per-triangle frames (qc by bisection, iso one program per frame set), never a flipped triangle")
       ->capture_default_str();
   add_local_global_options(*cmd, args->lg);
   add_solver_options(*cmd, args->solver);

@@ -61,6 +61,7 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "level_gap") s.direct.level_gap = real(key, v);
   else if (key == "moving_rings") s.direct.moving_rings = integer(key, v);
   else if (key == "exact_max_elements") s.exact.max_elements = integer(key, v);
+  else if (key == "frame_iterations") s.frame_iterations = integer(key, v);
   else if (key == "threads") o.threads = integer(key, v);
   else if (key == "lg_iterations") o.local_global.max_iterations = integer(key, v);
   else if (key == "lg_tolerance") o.local_global.relative_change = real(key, v);

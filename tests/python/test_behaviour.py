@@ -242,3 +242,16 @@ def test_surface_relax_in_3d():
         assert relax.max_distortion <= linf.max_distortion * (1 + 1e-4)
         tolerance = 1e-4 * linf.max_distortion
         assert strictmin.compare(relax.distortion, linf.distortion, linf.weights, tolerance).order == -1
+
+
+def test_iso_frame_iteration_cap():
+    # frame_iterations caps the qc/iso frame loop: one iteration either converged at once or
+    # says max-iterations; 0 is refused like the CLI's --frame-iterations 0.
+    V, F = saddle(4)
+    r = strictmin.param(V, F, method="linf", measure="iso", frame_iterations=1)
+    assert r.summary["frame_iterations"] == 1 and r.summary["flipped"] == 0
+    assert r.status in ("solved", "max-iterations")
+    full = strictmin.param(V, F, method="linf", measure="iso")
+    assert full.summary["max_distortion"] <= r.summary["max_distortion"] + 1e-9
+    with pytest.raises(ValueError, match="frame_iterations"):
+        strictmin.param(V, F, method="linf", measure="iso", frame_iterations=0)
