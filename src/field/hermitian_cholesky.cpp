@@ -3,9 +3,11 @@
 #include <cholmod.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
+#include "field/complex_supernodal_solve.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin {
@@ -64,6 +66,19 @@ bool HermitianCholesky::factorize(const HermitianLower& M) {
 }
 
 Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
+  const cholmod_factor* L = impl_->L;
+  if (L && supports_complex_supernodal_solve(*L) && static_cast<Eigen::Index>(L->n) == b.size() &&
+      !std::getenv("STRICTMIN_CHOLMOD_SOLVE")) {
+    // x = P^T L^-H L^-1 P b with our loops (complex_supernodal_solve.h).
+    const int* perm = static_cast<const int*>(L->Perm);
+    const Eigen::Index n = b.size();
+    Eigen::VectorXcd y(n), x(n);
+    for (Eigen::Index k = 0; k < n; ++k) y(k) = b(perm[k]);
+    complex_supernodal_forward(*L, y.data());
+    complex_supernodal_backward(*L, y.data());
+    for (Eigen::Index k = 0; k < n; ++k) x(perm[k]) = y(k);
+    return x;
+  }
   cholmod_common& c = impl_->common;
   cholmod_dense B;
   std::memset(&B, 0, sizeof B);

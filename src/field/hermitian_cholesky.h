@@ -2,7 +2,8 @@
 // Sparse Cholesky L L^H of a complex Hermitian positive definite matrix (CHOLMOD's complex
 // supernodal factorization, AMD order): the cross field's connection Laplacian factored as
 // the complex F by F form, half the flops and a quarter of the entries of its 2F by 2F real
-// form (docs/gparam.md, "The field"). Private to the field code.
+// form (docs/gparam.md, "The field"); also the L2 solve of seamless problems in complex form
+// (src/solvers/l2_complex.h). Private to the library.
 #include <Eigen/Core>
 #include <complex>
 #include <vector>

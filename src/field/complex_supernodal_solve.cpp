@@ -1,0 +1,134 @@
+#include "field/complex_supernodal_solve.h"
+
+#include <vector>
+
+#include "solvers/socp/vector_clones.h"
+
+namespace strictmin {
+namespace {
+
+// Complex numbers as (re, im) pairs of doubles: std::complex's multiplication checks for
+// infinities and NaNs (a library call per product) unless the whole build relaxes that.
+struct Supernode {
+  int first;          // first column (and row) of the supernode
+  int cols;           // its width
+  int rows;           // rows of its block (the columns themselves first)
+  const int* index;   // the block's row indices
+  const double* val;  // the block, column-major, leading dimension `rows`, (re, im) pairs
+};
+
+struct SupernodalView {
+  const int *super, *pi, *px, *s;
+  const double* lx;
+  long count;
+  explicit SupernodalView(const cholmod_factor& L)
+      : super(static_cast<const int*>(L.super)),
+        pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)),
+        s(static_cast<const int*>(L.s)),
+        lx(static_cast<const double*>(L.x)),
+        count(static_cast<long>(L.nsuper)) {}
+  Supernode operator[](long k) const {
+    return {super[k], super[k + 1] - super[k], pi[k + 1] - pi[k], s + pi[k], lx + 2L * px[k]};
+  }
+};
+
+// Workspace (complex entries, as pairs) for the rows below one supernode, per thread.
+double* below_buffer(int size) {
+  thread_local std::vector<double> buffer;
+  if (static_cast<int>(buffer.size()) < 2 * size) buffer.resize(static_cast<size_t>(size) * 4);
+  return buffer.data();
+}
+
+}  // namespace
+
+bool supports_complex_supernodal_solve(const cholmod_factor& L) {
+  return L.is_super && L.is_ll && L.xtype == CHOLMOD_COMPLEX && L.dtype == CHOLMOD_DOUBLE &&
+         L.itype == CHOLMOD_INT;
+}
+
+STRICTMIN_VECTOR_CLONES
+void complex_supernodal_forward(const cholmod_factor& L, std::complex<double>* xc) {
+  const SupernodalView view(L);
+  double* x = reinterpret_cast<double*>(xc);
+  for (long k = 0; k < view.count; ++k) {
+    const Supernode sn = view[k];
+    double* xs = x + 2L * sn.first;
+    // The dense triangle: x_j = x_j / L_jj (real), then the columns' rows inside the supernode.
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* column = sn.val + 2L * j * sn.rows;
+      const double inv = 1.0 / column[2 * j];
+      const double a = xs[2 * j] * inv, b = xs[2 * j + 1] * inv;
+      xs[2 * j] = a;
+      xs[2 * j + 1] = b;
+      for (int i = j + 1; i < sn.cols; ++i) {
+        xs[2 * i] -= column[2 * i] * a - column[2 * i + 1] * b;
+        xs[2 * i + 1] -= column[2 * i] * b + column[2 * i + 1] * a;
+      }
+    }
+    // The rows below: every column's update accumulated in a contiguous buffer, then one
+    // scatter per row.
+    const int below = sn.rows - sn.cols;
+    if (below == 0) continue;
+    double* acc = below_buffer(below);
+    for (int i = 0; i < 2 * below; ++i) acc[i] = 0.0;
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* rect = sn.val + 2L * (static_cast<long>(j) * sn.rows + sn.cols);
+      const double a = xs[2 * j], b = xs[2 * j + 1];
+      for (int i = 0; i < below; ++i) {
+        acc[2 * i] += rect[2 * i] * a - rect[2 * i + 1] * b;
+        acc[2 * i + 1] += rect[2 * i] * b + rect[2 * i + 1] * a;
+      }
+    }
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) {
+      x[2L * index[i]] -= acc[2 * i];
+      x[2L * index[i] + 1] -= acc[2 * i + 1];
+    }
+  }
+}
+
+STRICTMIN_VECTOR_CLONES
+void complex_supernodal_backward(const cholmod_factor& L, std::complex<double>* xc) {
+  const SupernodalView view(L);
+  double* x = reinterpret_cast<double*>(xc);
+  for (long k = view.count - 1; k >= 0; --k) {
+    const Supernode sn = view[k];
+    double* xs = x + 2L * sn.first;
+    // Row j of L^H is column j of L conjugated: x_j = (x_j - sum_{i > j} conj(L_ij) x_i) / L_jj,
+    // the x_i below the supernode already final (later supernodes): gathered once.
+    const int below = sn.rows - sn.cols;
+    double* xb = below_buffer(below);
+    const int* index = sn.index + sn.cols;
+    for (int i = 0; i < below; ++i) {
+      xb[2 * i] = x[2L * index[i]];
+      xb[2 * i + 1] = x[2L * index[i] + 1];
+    }
+    for (int j = sn.cols - 1; j >= 0; --j) {
+      const double* column = sn.val + 2L * j * sn.rows;
+      const double* rect = column + 2L * sn.cols;
+      // Two partial sums per part: one would chain every multiply-add on the previous one.
+      double re0 = 0, im0 = 0, re1 = 0, im1 = 0;
+      int i = 0;
+      for (; i + 1 < below; i += 2) {
+        re0 += rect[2 * i] * xb[2 * i] + rect[2 * i + 1] * xb[2 * i + 1];
+        im0 += rect[2 * i] * xb[2 * i + 1] - rect[2 * i + 1] * xb[2 * i];
+        re1 += rect[2 * i + 2] * xb[2 * i + 2] + rect[2 * i + 3] * xb[2 * i + 3];
+        im1 += rect[2 * i + 2] * xb[2 * i + 3] - rect[2 * i + 3] * xb[2 * i + 2];
+      }
+      for (; i < below; ++i) {
+        re0 += rect[2 * i] * xb[2 * i] + rect[2 * i + 1] * xb[2 * i + 1];
+        im0 += rect[2 * i] * xb[2 * i + 1] - rect[2 * i + 1] * xb[2 * i];
+      }
+      for (i = j + 1; i < sn.cols; ++i) {
+        re1 += column[2 * i] * xs[2 * i] + column[2 * i + 1] * xs[2 * i + 1];
+        im1 += column[2 * i] * xs[2 * i + 1] - column[2 * i + 1] * xs[2 * i];
+      }
+      const double inv = 1.0 / column[2 * j];
+      xs[2 * j] = (xs[2 * j] - (re0 + re1)) * inv;
+      xs[2 * j + 1] = (xs[2 * j + 1] - (im0 + im1)) * inv;
+    }
+  }
+}
+
+}  // namespace strictmin
