@@ -112,7 +112,8 @@ TEST(ComplexEqualityBasis, LeavesOtherEqualitiesToTheRealForm) {
   EXPECT_LT((p.eq_matrix * dofs(r.positions) - p.eq_rhs).lpNorm<Eigen::Infinity>(), 1e-12);
 }
 
-// The complex supernodal substitutions against a dense Cholesky: a Hermitian positive
+// The complex supernodal substitutions, and those with the compact copy of the factor,
+// against a dense Cholesky: a Hermitian positive
 // definite matrix with complex couplings on a grid (wide enough for supernodes of several
 // columns).
 TEST(HermitianCholeskyTest, SolvesLikeADenseFactorization) {
@@ -148,7 +149,11 @@ TEST(HermitianCholeskyTest, SolvesLikeADenseFactorization) {
   ASSERT_TRUE(chol.factorize(A));
   Eigen::VectorXcd b(n);
   for (int k = 0; k < n; ++k) b(k) = Complex(u(rng), u(rng));
-  const Eigen::VectorXcd x = chol.solve(b), expected = dense.llt().solve(b);
-  EXPECT_LT((x - expected).norm(), 1e-10 * expected.norm());
-  EXPECT_LT((dense * x - b).norm(), 1e-12 * b.norm() * dense.cwiseAbs().maxCoeff());
+  const Eigen::VectorXcd expected = dense.llt().solve(b);
+  for (const bool compact : {false, true}) {  // the supernodal and the compact substitutions
+    if (compact) chol.compact_for_solves();
+    const Eigen::VectorXcd x = chol.solve(b);
+    EXPECT_LT((x - expected).norm(), 1e-10 * expected.norm()) << compact;
+    EXPECT_LT((dense * x - b).norm(), 1e-12 * b.norm() * dense.cwiseAbs().maxCoeff()) << compact;
+  }
 }

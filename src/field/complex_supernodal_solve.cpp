@@ -131,4 +131,60 @@ void complex_supernodal_backward(const cholmod_factor& L, std::complex<double>* 
   }
 }
 
+CompactFactor compact_factor(const cholmod_factor& L) {
+  const SupernodalView view(L);
+  CompactFactor c;
+  const int n = static_cast<int>(L.n);
+  c.start.assign(n + 1, 0);
+  c.inverse_diagonal.resize(n);
+  c.row.reserve(static_cast<size_t>(L.xsize));  // an upper bound: no reallocation
+  c.value.reserve(static_cast<size_t>(L.xsize));
+  for (long k = 0; k < view.count; ++k) {
+    const Supernode sn = view[k];
+    for (int j = 0; j < sn.cols; ++j) {
+      const double* column = sn.val + 2L * j * sn.rows;
+      c.inverse_diagonal[sn.first + j] = 1.0 / column[2 * j];
+      for (int i = j + 1; i < sn.rows; ++i)
+        if (column[2 * i] != 0 || column[2 * i + 1] != 0) {
+          c.row.push_back(sn.index[i]);
+          c.value.emplace_back(column[2 * i], column[2 * i + 1]);
+        }
+      c.start[sn.first + j + 1] = static_cast<int>(c.row.size());
+    }
+  }
+  return c;
+}
+
+STRICTMIN_VECTOR_CLONES
+void compact_solve(const CompactFactor& L, std::complex<double>* xc) {
+  double* x = reinterpret_cast<double*>(xc);
+  const double* v = reinterpret_cast<const double*>(L.value.data());
+  const int* row = L.row.data();
+  const int n = static_cast<int>(L.inverse_diagonal.size());
+  // Forward: x_j /= L_jj, then x_i -= L_ij x_j below it.
+  for (int j = 0; j < n; ++j) {
+    const double d = L.inverse_diagonal[j];
+    const double a = x[2 * j] * d, b = x[2 * j + 1] * d;
+    x[2 * j] = a;
+    x[2 * j + 1] = b;
+    for (int k = L.start[j]; k < L.start[j + 1]; ++k) {
+      const long r = row[k];
+      x[2 * r] -= v[2 * k] * a - v[2 * k + 1] * b;
+      x[2 * r + 1] -= v[2 * k] * b + v[2 * k + 1] * a;
+    }
+  }
+  // Backward: x_j = (x_j - sum_i conj(L_ij) x_i) / L_jj.
+  for (int j = n - 1; j >= 0; --j) {
+    double re = 0, im = 0;
+    for (int k = L.start[j]; k < L.start[j + 1]; ++k) {
+      const long r = row[k];
+      re += v[2 * k] * x[2 * r] + v[2 * k + 1] * x[2 * r + 1];
+      im += v[2 * k] * x[2 * r + 1] - v[2 * k + 1] * x[2 * r];
+    }
+    const double d = L.inverse_diagonal[j];
+    x[2 * j] = (x[2 * j] - re) * d;
+    x[2 * j + 1] = (x[2 * j + 1] - im) * d;
+  }
+}
+
 }  // namespace strictmin

@@ -9,6 +9,7 @@
 #include <cholmod.h>
 
 #include <complex>
+#include <vector>
 
 namespace strictmin {
 
@@ -18,5 +19,23 @@ bool supports_complex_supernodal_solve(const cholmod_factor& L);
 // x <- L^{-1} x and x <- L^{-H} x (no permutation: CHOLMOD_L and CHOLMOD_Lt).
 void complex_supernodal_forward(const cholmod_factor& L, std::complex<double>* x);
 void complex_supernodal_backward(const cholmod_factor& L, std::complex<double>* x);
+
+// The factor by columns with its stored zeros dropped, for the substitutions: CHOLMOD's
+// supernodes are padded to dense blocks (relaxed amalgamation, for the factorization's dense
+// kernels), which on the face graphs' factors stores nearly twice L's nonzeros (horse:
+// 3.78M entries for 1.96M nonzeros), and the substitutions, memory-bound, stream them all.
+// Columns of (row, value) pairs and the inverse diagonal: 20 bytes per nonzero against 16 per
+// stored entry, a third less to read per substitution.
+struct CompactFactor {
+  std::vector<int> start;                   // column j: entries [start[j], start[j+1])
+  std::vector<int> row;                     // below the diagonal
+  std::vector<std::complex<double>> value;
+  std::vector<double> inverse_diagonal;
+};
+
+CompactFactor compact_factor(const cholmod_factor& L);
+
+// x <- L^{-H} L^{-1} x with the compact factor (no permutation).
+void compact_solve(const CompactFactor& L, std::complex<double>* x);
 
 }  // namespace strictmin

@@ -15,6 +15,7 @@ namespace strictmin {
 struct HermitianCholesky::Impl {
   cholmod_common common;
   cholmod_factor* L = nullptr;
+  CompactFactor compact;  // L without its stored zeros, for the substitutions
   // cholmod_solve2's result and workspace, kept between solves (no allocation per solve).
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
   Impl() {
@@ -61,8 +62,13 @@ bool HermitianCholesky::factorize(const HermitianLower& M) {
   if (!impl_->L || c.status != CHOLMOD_OK) return false;
   t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_factorize(&A, impl_->L, &c);
+  impl_->compact = CompactFactor{};
   factorize_s = seconds_since(t0);
   return ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+}
+
+void HermitianCholesky::compact_for_solves() {
+  if (impl_->L && supports_complex_supernodal_solve(*impl_->L)) impl_->compact = compact_factor(*impl_->L);
 }
 
 Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
@@ -74,8 +80,12 @@ Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
     const Eigen::Index n = b.size();
     Eigen::VectorXcd y(n), x(n);
     for (Eigen::Index k = 0; k < n; ++k) y(k) = b(perm[k]);
-    complex_supernodal_forward(*L, y.data());
-    complex_supernodal_backward(*L, y.data());
+    if (!impl_->compact.start.empty()) {
+      compact_solve(impl_->compact, y.data());
+    } else {
+      complex_supernodal_forward(*L, y.data());
+      complex_supernodal_backward(*L, y.data());
+    }
     for (Eigen::Index k = 0; k < n; ++k) x(perm[k]) = y(k);
     return x;
   }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "solvers/serial_cholmod_scope.h"
+
 namespace strictmin {
 namespace {
 
@@ -75,6 +77,7 @@ HermitianLower compress(const std::vector<Entry>& entries, int n) {
 bool ComplexL2::factorize(const Problem& p, const Eigen::VectorXd& element_weights) {
   weights_ = element_weights;
   if (basis_.num_nodes == 0) return true;
+  SerialCholmodScope serial;  // one BLAS thread: supernodes of a few columns (serial_cholmod_scope.h)
   return cholesky_.factorize(compress(entries(p, basis_, weights_), basis_.num_nodes));
 }
 
