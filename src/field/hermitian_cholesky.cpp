@@ -16,6 +16,7 @@ struct HermitianCholesky::Impl {
   cholmod_common common;
   cholmod_factor* L = nullptr;
   CompactFactor compact;  // L without its stored zeros, for the substitutions
+  Eigen::VectorXcd work;  // the permuted right-hand side
   // cholmod_solve2's result and workspace, kept between solves (no allocation per solve).
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
   Impl() {
@@ -72,13 +73,20 @@ void HermitianCholesky::compact_for_solves() {
 }
 
 Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
+  Eigen::VectorXcd x = b;
+  solve_in_place(x);
+  return x;
+}
+
+void HermitianCholesky::solve_in_place(Eigen::VectorXcd& b) const {
   const cholmod_factor* L = impl_->L;
   if (L && supports_complex_supernodal_solve(*L) && static_cast<Eigen::Index>(L->n) == b.size() &&
       !std::getenv("STRICTMIN_CHOLMOD_SOLVE")) {
     // x = P^T L^-H L^-1 P b with our loops (complex_supernodal_solve.h).
     const int* perm = static_cast<const int*>(L->Perm);
     const Eigen::Index n = b.size();
-    Eigen::VectorXcd y(n), x(n);
+    Eigen::VectorXcd& y = impl_->work;
+    y.resize(n);
     for (Eigen::Index k = 0; k < n; ++k) y(k) = b(perm[k]);
     if (!impl_->compact.start.empty()) {
       compact_solve(impl_->compact, y.data());
@@ -86,8 +94,8 @@ Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
       complex_supernodal_forward(*L, y.data());
       complex_supernodal_backward(*L, y.data());
     }
-    for (Eigen::Index k = 0; k < n; ++k) x(perm[k]) = y(k);
-    return x;
+    for (Eigen::Index k = 0; k < n; ++k) b(perm[k]) = y(k);
+    return;
   }
   cholmod_common& c = impl_->common;
   cholmod_dense B;
@@ -98,13 +106,11 @@ Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
   B.x = const_cast<std::complex<double>*>(b.data());
   B.xtype = CHOLMOD_COMPLEX;
   B.dtype = CHOLMOD_DOUBLE;
-  Eigen::VectorXcd x(b.size());
   if (!cholmod_solve2(CHOLMOD_A, impl_->L, &B, nullptr, &impl_->X, nullptr, &impl_->Y, &impl_->E, &c)) {
-    x.setConstant(std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
-    return x;
+    b.setConstant(std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
+    return;
   }
-  std::memcpy(x.data(), impl_->X->x, sizeof(std::complex<double>) * static_cast<size_t>(b.size()));
-  return x;
+  std::memcpy(b.data(), impl_->X->x, sizeof(std::complex<double>) * static_cast<size_t>(b.size()));
 }
 
 }  // namespace strictmin

@@ -34,6 +34,8 @@ class HermitianCholesky {
   void compact_for_solves();
   // x = A^-1 b.
   Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;
+  // x <- A^-1 x, without allocating (a workspace of the factor's: one solve at a time).
+  void solve_in_place(Eigen::VectorXcd& x) const;
 
   double analyze_s = 0, factorize_s = 0;  // wall seconds of the last factorize()
 
