@@ -16,6 +16,9 @@ struct HermitianCholesky::Impl {
   cholmod_common common;
   cholmod_factor* L = nullptr;
   CompactFactor compact;  // L without its stored zeros, for the substitutions
+  int n = 0;                          // the analysed pattern
+  std::vector<int> start, row;
+  bool factored = false;              // the last factorization succeeded
   Eigen::VectorXcd work;  // the permuted right-hand side
   // cholmod_solve2's result and workspace, kept between solves (no allocation per solve).
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
@@ -42,7 +45,9 @@ HermitianCholesky::~HermitianCholesky() { delete impl_; }
 
 bool HermitianCholesky::factorize(const HermitianLower& M) {
   cholmod_common& c = impl_->common;
-  if (impl_->L) cholmod_free_factor(&impl_->L, &c);
+  // The same pattern as the last good factorization's (IRLS reweighting): its analysis stays.
+  const bool same = impl_->L && impl_->factored && M.n == impl_->n && M.start == impl_->start && M.row == impl_->row;
+  if (impl_->L && !same) cholmod_free_factor(&impl_->L, &c);
   // A view of M's arrays: CHOLMOD's complex type is interleaved (re, im), as std::complex.
   cholmod_sparse A;
   std::memset(&A, 0, sizeof A);
@@ -58,14 +63,21 @@ bool HermitianCholesky::factorize(const HermitianLower& M) {
   A.sorted = 1;
   A.packed = 1;
   auto t0 = std::chrono::steady_clock::now();
-  impl_->L = cholmod_analyze(&A, &c);
+  impl_->factored = false;
+  if (!same) {
+    impl_->L = cholmod_analyze(&A, &c);
+    impl_->n = M.n;
+    impl_->start = M.start;
+    impl_->row = M.row;
+  }
   analyze_s = seconds_since(t0);
   if (!impl_->L || c.status != CHOLMOD_OK) return false;
   t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_factorize(&A, impl_->L, &c);
   impl_->compact = CompactFactor{};
   factorize_s = seconds_since(t0);
-  return ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+  impl_->factored = ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+  return impl_->factored;
 }
 
 void HermitianCholesky::compact_for_solves() {

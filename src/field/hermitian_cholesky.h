@@ -25,8 +25,9 @@ class HermitianCholesky {
   HermitianCholesky(const HermitianCholesky&) = delete;
   HermitianCholesky& operator=(const HermitianCholesky&) = delete;
 
-  // AMD order and symbolic analysis of the pattern, then the numeric factorization. False
-  // when the matrix is not (numerically) positive definite.
+  // AMD order and symbolic analysis of the pattern (kept when the pattern is the last
+  // successful factorization's), then the numeric factorization. False when the matrix is
+  // not (numerically) positive definite.
   bool factorize(const HermitianLower& A);
   // Before many solves: a copy of the factor without its stored zeros, which the
   // substitutions then read instead (complex_supernodal_solve.h; on horse's field the Lanczos
