@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "field/complex_supernodal_solve.h"
+#include "field/hermitian_factor.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin {
@@ -19,6 +21,7 @@ struct HermitianCholesky::Impl {
   int n = 0;                          // the analysed pattern
   std::vector<int> start, row;
   bool factored = false;              // the last factorization succeeded
+  std::unique_ptr<HermitianFactor> numeric;  // our numeric factorization (hermitian_factor.h)
   Eigen::VectorXcd work;  // the permuted right-hand side
   // cholmod_solve2's result and workspace, kept between solves (no allocation per solve).
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
@@ -39,6 +42,31 @@ struct HermitianCholesky::Impl {
     cholmod_finish(&common);
   }
 };
+
+namespace {
+
+// M's lower-triangle entries as entries of the permuted matrix's lower triangle: (r, c) goes
+// to (p(r), p(c)), or conjugated to (p(c), p(r)) when the permutation puts it above the
+// diagonal.
+HermitianEntries permuted_entries(const HermitianLower& M, const cholmod_factor* L) {
+  const int* perm = static_cast<const int*>(L->Perm);
+  std::vector<int> inverse(M.n);
+  for (int k = 0; k < M.n; ++k) inverse[perm[k]] = k;
+  HermitianEntries e;
+  e.row.reserve(M.row.size());
+  e.col.reserve(M.row.size());
+  e.conjugate.reserve(M.row.size());
+  for (int c = 0; c < M.n; ++c)
+    for (int k = M.start[c]; k < M.start[c + 1]; ++k) {
+      const int pr = inverse[M.row[k]], pc = inverse[c];
+      e.row.push_back(std::max(pr, pc));
+      e.col.push_back(std::min(pr, pc));
+      e.conjugate.push_back(pr < pc);
+    }
+  return e;
+}
+
+}  // namespace
 
 HermitianCholesky::HermitianCholesky() : impl_(new Impl) {}
 HermitianCholesky::~HermitianCholesky() { delete impl_; }
@@ -69,14 +97,23 @@ bool HermitianCholesky::factorize(const HermitianLower& M) {
     impl_->n = M.n;
     impl_->start = M.start;
     impl_->row = M.row;
+    impl_->numeric.reset();
+    if (impl_->L && c.status == CHOLMOD_OK && impl_->L->is_super && !std::getenv("STRICTMIN_CHOLMOD_NUMERIC")) {
+      impl_->numeric = std::make_unique<HermitianFactor>();
+      if (!impl_->numeric->setup(impl_->L, &c, permuted_entries(M, impl_->L))) impl_->numeric.reset();
+    }
   }
   analyze_s = seconds_since(t0);
   if (!impl_->L || c.status != CHOLMOD_OK) return false;
   t0 = std::chrono::steady_clock::now();
-  const int ok = cholmod_factorize(&A, impl_->L, &c);
   impl_->compact = CompactFactor{};
+  if (impl_->numeric) {
+    impl_->factored = impl_->numeric->factorize(M.value.data());
+  } else {
+    const int ok = cholmod_factorize(&A, impl_->L, &c);
+    impl_->factored = ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+  }
   factorize_s = seconds_since(t0);
-  impl_->factored = ok && c.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
   return impl_->factored;
 }
 

@@ -1,9 +1,11 @@
 #pragma once
-// Sparse Cholesky L L^H of a complex Hermitian positive definite matrix (CHOLMOD's complex
-// supernodal factorization, AMD order): the cross field's connection Laplacian factored as
-// the complex F by F form, half the flops and a quarter of the entries of its 2F by 2F real
-// form (docs/gparam.md, "The field"); also the L2 solve of seamless problems in complex form
-// (src/solvers/l2_complex.h). Private to the library.
+// Sparse Cholesky L L^H of a complex Hermitian positive definite matrix (CHOLMOD's
+// supernodal analysis in AMD order; the numeric factorization hermitian_factor.h, or
+// CHOLMOD's with STRICTMIN_CHOLMOD_NUMERIC set; the substitutions complex_supernodal_solve.h,
+// or CHOLMOD's with STRICTMIN_CHOLMOD_SOLVE set): the cross field's connection Laplacian
+// factored as the complex F by F form, half the flops and a quarter of the entries of its
+// 2F by 2F real form (docs/gparam.md, "The field"); also the L2 solve of seamless problems in
+// complex form (src/solvers/l2_complex.h). Private to the library.
 #include <Eigen/Core>
 #include <complex>
 #include <vector>
