@@ -2,7 +2,7 @@
 // the complex basis meets the seams exactly, the complex form gives the real form's
 // minimizer (an independent elimination, sparse products and the real supernodal Cholesky),
 // equalities that are not complex-linear fall back to the real form, and the complex
-// Cholesky's own substitutions solve like a dense factorization.
+// Cholesky's own factorization and substitutions solve like a dense factorization.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -112,10 +112,10 @@ TEST(ComplexEqualityBasis, LeavesOtherEqualitiesToTheRealForm) {
   EXPECT_LT((p.eq_matrix * dofs(r.positions) - p.eq_rhs).lpNorm<Eigen::Infinity>(), 1e-12);
 }
 
-// The complex supernodal substitutions, and those with the compact copy of the factor,
-// against a dense Cholesky: a Hermitian positive
-// definite matrix with complex couplings on a grid (wide enough for supernodes of several
-// columns).
+// The complex Cholesky against a dense one: our numeric factorization (on this grid both its
+// loops and its BLAS paths: a 47-column root supernode, wide updates), the supernodal
+// substitutions and those with the compact copy of the factor, on a Hermitian positive
+// definite matrix with complex couplings.
 TEST(HermitianCholeskyTest, SolvesLikeADenseFactorization) {
   const int side = 24, n = side * side;
   Eigen::MatrixXcd dense = Eigen::MatrixXcd::Zero(n, n);
