@@ -19,8 +19,10 @@ LanczosResult lanczos_smallest(const HermitianCholesky& A, const Eigen::VectorXd
   std::vector<double> alpha, beta;
   Eigen::VectorXd s;
   LanczosResult out;
+  Eigen::VectorXcd w(x0.size()), mw(x0.size());  // kept: no allocation per step
   for (int j = 0; j < max_steps; ++j) {
-    Eigen::VectorXcd w = A.solve(m.cwiseProduct(V.col(j)));
+    w = m.cwiseProduct(V.col(j));
+    A.solve_in_place(w);
     ++out.steps;
     // The three-term recurrence (alpha_j real: T is M-self-adjoint), then one classical
     // Gram-Schmidt pass against the whole basis ("twice is enough": the recurrence is the
@@ -29,7 +31,8 @@ LanczosResult lanczos_smallest(const HermitianCholesky& A, const Eigen::VectorXd
     w -= alpha.back() * V.col(j);
     if (j > 0) w -= beta[j - 1] * V.col(j - 1);
     const auto basis = V.leftCols(j + 1);
-    const Eigen::VectorXcd c = basis.adjoint() * m.cwiseProduct(w);
+    mw = m.cwiseProduct(w);
+    const Eigen::VectorXcd c = basis.adjoint() * mw;
     w.noalias() -= basis * c;
     beta.push_back(m_norm(w));
     // The Ritz pair of the tridiagonal matrix's largest eigenvalue.

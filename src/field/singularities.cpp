@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace strictmin {
 
@@ -25,22 +27,29 @@ std::vector<int> vertex_indices(const Mesh& mesh, const SurfaceGraph& g, const F
   const Eigen::VectorXd K = angle_defects(mesh, g);
   std::vector<int> quarters(g.num_vertices, 0);
   if (raw) raw->assign(g.num_vertices, 0.0);
-  for (int v = 0; v < g.num_vertices; ++v) {
-    double turn = 0;
-    const int begin = g.fan_start[v], end = g.fan_start[v + 1];
-    for (int k = begin; k < end; ++k) {
-      const int f = g.fan_faces[k], i = g.fan_corners[k];
-      const int e = g.face_edges(f, (i + 2) % 3);  // crossed to reach the next face
-      const int next = g.fan_faces[k + 1 < end ? k + 1 : begin];
-      const double t = g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
-      double delta = std::arg(u(next) / (std::polar(1.0, 4.0 * t) * u(f))) / 4.0;  // (-pi/4, pi/4]
-      if (delta <= -std::numbers::pi / 4) delta += std::numbers::pi / 2;
-      turn += delta;
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.num_vertices, 4096), [&](const tbb::blocked_range<int>& range) {
+    for (int v = range.begin(); v < range.end(); ++v) {
+      double turn = 0;
+      const int begin = g.fan_start[v], end = g.fan_start[v + 1];
+      for (int k = begin; k < end; ++k) {
+        const int f = g.fan_faces[k], i = g.fan_corners[k];
+        const int e = g.face_edges(f, (i + 2) % 3);  // crossed to reach the next face
+        const int next = g.fan_faces[k + 1 < end ? k + 1 : begin];
+        const double t = g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
+        // arg(u_next / (e^{4it} u_f)) = arg(u_next conj(e^{4it} u_f)), written out (std::complex's
+        // division and product are library calls).
+        const double c = std::cos(4.0 * t), s = std::sin(4.0 * t);
+        const double pr = c * u(f).real() - s * u(f).imag(), pi = c * u(f).imag() + s * u(f).real();
+        const double re = u(next).real() * pr + u(next).imag() * pi, im = u(next).imag() * pr - u(next).real() * pi;
+        double delta = std::atan2(im, re) / 4.0;  // (-pi/4, pi/4]
+        if (delta <= -std::numbers::pi / 4) delta += std::numbers::pi / 2;
+        turn += delta;
+      }
+      const double q = 4.0 * (K(v) + turn) / (2 * std::numbers::pi);
+      quarters[v] = static_cast<int>(std::lround(q));
+      if (raw) (*raw)[v] = q;
     }
-    const double q = 4.0 * (K(v) + turn) / (2 * std::numbers::pi);
-    quarters[v] = static_cast<int>(std::lround(q));
-    if (raw) (*raw)[v] = q;
-  }
+  });
   return quarters;
 }
 

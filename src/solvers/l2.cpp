@@ -7,11 +7,19 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
+#include "solvers/l2_complex.h"
 #include "strictmin/problem/parts.h"
 
 namespace strictmin {
 
-L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
+L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(p.free_index()) {
+  if (p.has_equalities() && options.complex_equalities) {
+    if (auto basis = complex_equality_basis(p)) {
+      complex_ = std::make_shared<ComplexL2>(std::move(*basis));
+      factorize_complex(p, p.weights);
+      return;
+    }
+  }
   if (p.has_equalities()) {
     auto basis = std::make_shared<EqualityBasis>(equality_basis(p));
     if (basis->redundant_residual > 1e-9 * (1.0 + p.eq_rhs.lpNorm<Eigen::Infinity>())) {
@@ -46,6 +54,7 @@ L2Solver::L2Solver(const Problem& p) : free_index_(p.free_index()) {
 }
 
 bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights) {
+  if (complex_) return factorize_complex(p, element_weights);
   if (status_ != SolveStatus::Solved && !cholesky_.analyzed()) return false;
   assemble(p, element_weights);
   return K_.rows() == 0 || factorize();
@@ -132,7 +141,17 @@ bool L2Solver::factorize() {
   return ok;
 }
 
+bool L2Solver::factorize_complex(const Problem& p, const Eigen::VectorXd& element_weights) {
+  const bool ok = complex_->factorize(p, element_weights);
+  analyze_s_ = complex_->analyze_s();
+  factorize_s_ = complex_->factorize_s();
+  status_ = ok ? SolveStatus::Solved : SolveStatus::NumericalError;
+  message_ = ok ? "" : "the L2 system with the equalities is singular (is every part anchored by a fixed vertex?)";
+  return ok;
+}
+
 Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
+  if (complex_) return status_ == SolveStatus::Solved ? complex_->solve(p) : p.positions;
   if (basis_ && status_ == SolveStatus::Solved) return solve_constrained(p);
   Eigen::MatrixXd X = p.positions;
   if (status_ != SolveStatus::Solved || K_.rows() == 0 || basis_) return X;
@@ -159,10 +178,10 @@ Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
   return X;
 }
 
-Result solve_l2(const Problem& p, const L2Options&) {
+Result solve_l2(const Problem& p, const L2Options& options) {
   const auto t0 = std::chrono::steady_clock::now();
   Result r;
-  const L2Solver solver(p);
+  const L2Solver solver(p, options);
   r.status = solver.status();
   r.message = solver.message();
   r.positions = solver.solve(p);

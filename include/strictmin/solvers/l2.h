@@ -7,7 +7,11 @@
 // (CHOLMOD) and kept: new targets only change B (the global step of local-global).
 // With linear equalities (seams) the unknowns are the independent dofs y of
 // problem/equality_basis.h, q = Z y + z0, and the matrix is Z^T (K (x) I) Z (the seams'
-// rotations couple the image coordinates).
+// rotations couple the image coordinates). When the equalities are complex-linear (planar
+// maps, 2 x 2 blocks that are rotation-scalings, right-hand sides 0: the seams of global
+// parametrization) the same minimizer is computed in complex form instead
+// (problem/complex_equality_basis.h, src/solvers/l2_complex.h): one complex unknown per
+// independent vertex, a Hermitian matrix of half the size.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -20,12 +24,17 @@
 
 namespace strictmin {
 
-struct L2Options {};
+struct L2Options {
+  // With complex-linear equalities, solve in complex form (false: the real form, to compare).
+  bool complex_equalities = true;
+};
+
+class ComplexL2;
 
 class L2Solver {
  public:
   // Assembles and factorizes K for the problem's mesh, weights and fixed vertices.
-  explicit L2Solver(const Problem& problem);
+  explicit L2Solver(const Problem& problem, const L2Options& options = {});
   // New per-element weights (#E, e.g. A_T w_T for IRLS): K is reassembled and factorized
   // again, reusing the symbolic analysis. False when K is not positive definite.
   bool reweight(const Problem& problem, const Eigen::VectorXd& element_weights);
@@ -43,8 +52,10 @@ class L2Solver {
   void assemble_constrained(const Problem& problem, const Eigen::VectorXd& element_weights);
   Eigen::MatrixXd solve_constrained(const Problem& problem) const;
   bool factorize();
+  bool factorize_complex(const Problem& problem, const Eigen::VectorXd& element_weights);
 
-  std::shared_ptr<const EqualityBasis> basis_;  // with equalities only
+  std::shared_ptr<const EqualityBasis> basis_;  // with equalities only (real form)
+  std::shared_ptr<ComplexL2> complex_;          // with complex-linear equalities
   Eigen::SparseMatrix<double> Zt_;              // Z^T
   Eigen::VectorXd Kz0_;                         // (K (x) I) z0
 
