@@ -472,7 +472,11 @@ bool NormalEquations::factor(const Scaling& sc) {
   SerialCholmodScope serial;  // serial_cholmod_scope.h: CHOLMOD's OpenMP loops and BLAS threads cost more than they gain
   for (int attempt = 0; attempt <= settings_.factorization_retries && !ok; ++attempt) {
     if (attempt > 0) delta_ = std::max(100.0 * delta_, 1e-14);
-    const double floor = 1e-3 * delta_ * max_diag_raw;
+    // The floor relative to the largest diagonal entry only after a failed factorisation: near
+    // the optimum a bounded cone at its bound makes that entry ~1e17 (docs/linf.md, "Accuracy of
+    // the Newton systems"), and the floor then swamps the smallest entries (~1e-3) and spoils
+    // the factor as the preconditioner of the refinement.
+    const double floor = attempt > 0 ? 1e-3 * delta_ * max_diag_raw : 0.0;
     for (int d = 0; d < N; ++d) values[diagonal_[d]] = diag_saved_[d] * (1.0 + delta_) + floor;
     if (split_) {
       ok = split_->factorize(values);
@@ -724,12 +728,16 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
   const double scale = std::max({max_abs(rc), max_abs(rdx), std::abs(rdk), max_abs(re), 1e-300});
   const double tol = tolerance > 0 ? tolerance : settings_.refinement_tolerance;
   const double threshold = std::max(tol * scale, 1e-14);
-  // Outer refinement: removes the penalty's effect on the equalities (and any rest).
-  const int outer = p_.num_eq() > 0 && !elim_ ? 3 : 0;
+  // Outer refinement on the unreduced system: removes the penalty's effect on the equalities
+  // (always), and otherwise the round-off of forming dz = W^{-1} (rc - W^{-1} M dv) when W is
+  // badly conditioned (a cone at its bound): the normal equations then hold to round-off but
+  // the dual equations M^T dz = r_d, which the certificate needs, only to 1e-5 .. 1e-3.
+  const bool penalty = p_.num_eq() > 0 && !elim_;
+  const int outer = penalty ? 3 : settings_.unreduced_refinement;
   // The residual check costs four passes over the cones; auxiliary directions (predictor,
   // correctors: tolerance given) without equalities skip it (their CG residual is reported)
   // and form all their cone parts in one pass.
-  const bool unchecked = tolerance > 0 && outer == 0 && settings_.verbose < 2;
+  const bool unchecked = tolerance > 0 && !penalty && settings_.verbose < 2;
   solve_unreduced(rdx, rdk, rc, re, d.dx, d.dk, w, unchecked ? nullptr : &d.dz, threshold, steps);
   d.refinement = steps;
   if (unchecked) {
@@ -762,7 +770,8 @@ void NormalEquations::solve_newton(const Eigen::VectorXd& q, const Eigen::Vector
     return std::max({max_abs(ex), std::abs(ek), max_abs(ec), max_abs(ee)}) / scale;
   };
   double best = residual();
-  for (int step = 0; step < outer && best > tol; ++step) {
+  const int steps_allowed = penalty || best > settings_.unreduced_refinement_above ? outer : 0;
+  for (int step = 0; step < steps_allowed && best > tol; ++step) {
     solve_unreduced(ex, ek, ec, ee, cx, ck, cw, &cz, threshold, steps);
     d.refinement += steps + 1;
     d.dx += cx;

@@ -42,6 +42,12 @@ struct IpmSettings {
   // residual by the factor refinement_progress.
   double refinement_progress = 0.5;
   int refinement_patience = 2;
+  // Step directions whose residual in the unreduced Newton system (not only in the normal
+  // equations) is above unreduced_refinement_above get at most unreduced_refinement steps of
+  // iterative refinement on that system, towards refinement_tolerance (kkt.h: solve_newton).
+  // Predictor and correctors are not checked (without penalised equalities).
+  int unreduced_refinement = 3;
+  double unreduced_refinement_above = 1e-8;
   double predictor_tolerance = 1e-4;
   double corrector_tolerance = 1e-6;
   // Newton directions whose relative residual stays above max_newton_residual for
