@@ -159,7 +159,7 @@ class Normal {
     cones_.apply(*sc_, Cones::Op::WInv, u, t);
     cones_.apply(*sc_, Cones::Op::WInv, t, out);
   }
-  // Iterative refinement until the residual reaches round-off or stops falling (by 10% per
+  // Iterative refinement until the residual reaches round-off or stops falling (by half per
   // step; a step that raised it is undone).
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
     Eigen::VectorXd x = chol_.solve(r), w, previous;
@@ -174,7 +174,7 @@ class Normal {
         break;
       }
       last_residual_ = size / scale;
-      if (size <= 1e-15 * std::max(1.0, max_abs(r)) || size > 0.9 * last || k == st_.refinement_steps) break;
+      if (size <= 1e-15 * std::max(1.0, max_abs(r)) || size > 0.5 * last || k == st_.refinement_steps) break;
       last = size;
       previous = x;
       x += chol_.solve(res);
