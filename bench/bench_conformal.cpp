@@ -66,10 +66,13 @@ void report(benchmark::State& state, const Problem& p, const Result& r, const Co
   state.counters["solved"] = r.status == SolveStatus::Solved;
 }
 
-void QcFrames(benchmark::State& state) {
+// One frame iteration from the L2 map, bracket 1e-6 (iso: in one program or by bisection).
+void frames(benchmark::State& state, Measure measure, bool iso_one_program) {
   const Problem p = bench::square_problem(static_cast<int>(state.range(0)));
   const Eigen::MatrixXd start = solve_l2(p).positions;
   ConformalOptions o;
+  o.measure = measure;
+  o.iso_one_program = iso_one_program;
   o.max_frame_iterations = 1;
   o.bisection_tolerance = 1e-6;
   for (auto _ : state) {
@@ -78,21 +81,8 @@ void QcFrames(benchmark::State& state) {
     report(state, p, r, st);
   }
 }
-
-void IsoFrames(benchmark::State& state) {
-  const Problem p = bench::square_problem(static_cast<int>(state.range(0)));
-  const Eigen::MatrixXd start = solve_l2(p).positions;
-  ConformalOptions o;
-  o.measure = Measure::Isometric;
-  o.iso_one_program = state.range(1) == 1;
-  o.max_frame_iterations = 1;
-  o.bisection_tolerance = 1e-6;
-  for (auto _ : state) {
-    ConformalStats st;
-    const Result r = solve_conformal_linf(p, start, o, &st);
-    report(state, p, r, st);
-  }
-}
+void QcFrames(benchmark::State& state) { frames(state, Measure::Quasiconformal, true); }
+void IsoFrames(benchmark::State& state) { frames(state, Measure::Isometric, state.range(1) == 1); }
 
 void IsoLinf(benchmark::State& state) {
   const Problem p = bench::square_problem(static_cast<int>(state.range(0)));

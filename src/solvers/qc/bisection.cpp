@@ -85,6 +85,18 @@ SparseSocpSettings feasibility_settings(int max_iterations) {
   return st;
 }
 
+FeasibilityTest test_into(const BisectionSetup& s, double level, BisectionOutcome& out) {
+  FeasibilityTest t = test_level(s, level, out.x);
+  ++out.steps;
+  out.ipm_iterations += t.ipm_iterations;
+  if (t.verdict == Verdict::Feasible) {
+    out.x = t.x;
+    out.value = std::min(t.value, level);
+    out.feasible = true;
+  }
+  return t;
+}
+
 BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, double floor, double cap,
                         double tolerance, int max_steps) {
   BisectionOutcome out;
@@ -101,13 +113,8 @@ BisectionOutcome bisect(const BisectionSetup& s, const Eigen::VectorXd& x0, doub
   // One test at `level`: a feasible one lowers the upper end to the witness's own value,
   // any other raises the lower end (certified only when infeasible).
   auto step = [&](double level) {
-    const FeasibilityTest t = test_level(s, level, out.x);
-    ++out.steps;
-    out.ipm_iterations += t.ipm_iterations;
+    const FeasibilityTest t = test_into(s, level, out);
     if (t.verdict == Verdict::Feasible) {
-      out.x = t.x;
-      out.value = std::min(t.value, level);
-      out.feasible = true;
       if (lo >= out.value) lo = lo_certified;  // an undecided level above a witness: not the optimum
     } else {
       lo = std::max(lo, level);

@@ -61,6 +61,10 @@ struct BisectionOutcome {
   std::string message;
 };
 
+// One feasibility test at `level` from out.x, counted in out (steps, interior-point
+// iterations); a witness becomes out's map and lowers out.value to its own value.
+FeasibilityTest test_into(const BisectionSetup& setup, double level, BisectionOutcome& out);
+
 // From the map x0 (its free frame value is the first upper end; +inf: the first test is at
 // level `cap`), down to a bracket of width tolerance * max(1, upper). `floor` is a certified
 // lower end (both measures are >= 1).

@@ -74,14 +74,8 @@ BisectionOutcome minimize_iso_level(const BisectionSetup& s, const Eigen::Vector
   for (int k = 0; k < kClosingTests && !out.converged; ++k) {
     const double level = out.value - 0.999 * tolerance * std::max(1.0, out.value);
     if (std::isfinite(bound) && level <= bound) break;
-    const FeasibilityTest t = test_level(s, level, out.x);
-    ++out.steps;
-    out.ipm_iterations += t.ipm_iterations;
-    if (t.verdict == Verdict::Feasible) {
-      out.x = t.x;
-      out.value = std::min(t.value, level);
-      continue;
-    }
+    const FeasibilityTest t = test_into(s, level, out);
+    if (t.verdict == Verdict::Feasible) continue;
     out.lower = std::max(std::isfinite(out.lower) ? out.lower : 1.0, level);
     if (t.verdict == Verdict::Infeasible) {
       bound = std::max(bound, level);

@@ -18,6 +18,18 @@ void add_row(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int r, doubl
     t.emplace_back(out_row, static_cast<int>(it.col()), c * it.value());
 }
 
+// Appends a cone's two tail rows, the map's 2-vector a_T (tail_a) or b_T: s = o - L M y, with
+// x = L y (ConformalParts::map_scale).
+void add_tail(const ConformalParts& parts, int i, bool tail_a, int row, std::vector<Eigen::Triplet<double>>& t,
+              std::vector<double>& h) {
+  const auto& M = tail_a ? parts.A : parts.B;
+  const auto& o = tail_a ? parts.a0 : parts.b0;
+  for (int j = 0; j < 2; ++j) {
+    add_row(M, 2 * i + j, -parts.map_scale, row + 1 + j, t);
+    h.push_back(o[2 * i + j]);
+  }
+}
+
 }  // namespace
 
 ConformalParts conformal_parts(const Problem& p) {
@@ -155,12 +167,7 @@ SparseSocp slack_program(Measure m, const ConformalParts& parts, const Eigen::Ve
     if (u_sign != 0) t.emplace_back(row, parts.num_x + i, -u_sign);
     t.emplace_back(row, tau, slack_scale.size() ? -slack_scale[i] : -1.0);
     h.push_back(ka * (r0 * parts.a0[2 * i] + r1 * parts.a0[2 * i + 1]) + head_const);
-    const auto& M = tail_a ? parts.A : parts.B;
-    const auto& o = tail_a ? parts.a0 : parts.b0;
-    for (int j = 0; j < 2; ++j) {
-      add_row(M, 2 * i + j, -L, row + 1 + j, t);
-      h.push_back(o[2 * i + j]);
-    }
+    add_tail(parts, i, tail_a, row, t, h);
     p.dims.push_back(3);
     row += 3;
   };
@@ -204,12 +211,7 @@ IsoProgram iso_program(const ConformalParts& parts, const Eigen::VectorXd& frame
   int row = 0;
   std::vector<double> per_s, constant;  // per cone: its head's bound (IsoProgram::head_bounds)
   auto tail = [&](int i, bool tail_a) {
-    const auto& M = tail_a ? parts.A : parts.B;
-    const auto& o = tail_a ? parts.a0 : parts.b0;
-    for (int j = 0; j < 2; ++j) {
-      add_row(M, 2 * i + j, -L, row + 1 + j, t);
-      h.push_back(o[2 * i + j]);
-    }
+    add_tail(parts, i, tail_a, row, t, h);
     p.dims.push_back(3);
     row += 3;
   };
