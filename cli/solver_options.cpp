@@ -75,6 +75,14 @@ void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
                   "taken only when it does not raise the maximum (l2: the energy)")
       ->capture_default_str()
       ->check(CLI::Range(0, 50));
+  cmd.add_option("--lg-extrapolation", a.lg_extrapolation,
+                  "arap/asap: extrapolate each target along its last change by this factor before a global step "
+                  "(a momentum on the rotations, 0: off); a step that raises the maximum is repeated without")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd.add_flag("--lg-cold-start", a.lg_cold_start,
+                "arap/asap with linf/direct: start every global step's interior-point method afresh (default: from "
+                "the previous step's dual)");
   cmd.add_flag("--no-flips", a.no_flips,
                 "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
                 "kept in their rings' kernels); the summary's flips_added counts them. Refused on a triangle surface "
@@ -85,6 +93,8 @@ void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o)
   o.max_iterations = a.lg_iterations;
   o.relative_change = a.lg_tolerance;
   o.acceleration_window = a.lg_acceleration;
+  o.target_extrapolation = a.lg_extrapolation;
+  o.warm_start = !a.lg_cold_start;
 }
 
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {

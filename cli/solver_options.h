@@ -41,6 +41,8 @@ struct LocalGlobalArgs {
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   int lg_acceleration = LocalGlobalOptions{}.acceleration_window;
+  double lg_extrapolation = LocalGlobalOptions{}.target_extrapolation;
+  bool lg_cold_start = false;
   bool no_flips = false;
 };
 void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& args);

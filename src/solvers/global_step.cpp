@@ -1,17 +1,21 @@
 #include "global_step.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace strictmin {
 
-GlobalStep::GlobalStep(const Problem& p, const SolverOptions& solver, bool no_flips) : solver_(solver) {
+GlobalStep::GlobalStep(const Problem& p, const SolverOptions& solver, bool no_flips, bool warm_start)
+    : solver_(solver) {
   if (solver.method == Method::Relax)
     sweeper_ = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance, no_flips);
   else if (solver.method == Method::L2 && !p.has_equalities())
     l2_ = std::make_unique<L2Solver>(p);
+  else if (solver.method == Method::Linf && warm_start)
+    warm_ = std::make_unique<LinfWarmStart>();
 }
 
-Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap) const {
+Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap, double expected_change) const {
   Result r;
   if (sweeper_) {
     r.positions = X;
@@ -33,7 +37,9 @@ Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap) const {
     s.linf.gap_tolerance = gap;
     s.linf.acceptable_gap_tolerance = std::max(s.linf.acceptable_gap_tolerance, gap);
   }
-  return run_method(p, s);
+  if (s.method != Method::Linf || !warm_) return run_method(p, s);
+  if (!std::isnan(expected_change)) warm_->expected_change = expected_change;
+  return solve_linf_warm(p, s.linf, warm_.get());
 }
 
 }  // namespace strictmin

@@ -11,6 +11,7 @@
 #include "strictmin/solvers/relax.h"
 #include "strictmin/solvers/result.h"
 #include "strictmin/tasks/method.h"
+#include "linf_warm_start.h"
 
 namespace strictmin {
 
@@ -18,16 +19,21 @@ class GlobalStep {
  public:
   // relax: one sweep per step (its rings in the kernel when no_flips); l2: one
   // factorization for every step; the other methods: a solve from the current map.
-  GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips);
+  // warm_start: linf steps start from the previous step's dual (linf_warm_start.h).
+  GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips, bool warm_start);
   // The step for the problem's current targets from the map X (#V by n). gap > 0 loosens a
   // linf solve's gap tolerance to it (an inexact early step).
-  Result run(Problem& problem, const Eigen::MatrixXd& X, double gap) const;
+  // expected_change: the last relative change of the maximum (NaN: unknown), how far above
+  // the start's maximum a warm-started linf step begins.
+  Result run(Problem& problem, const Eigen::MatrixXd& X, double gap, double expected_change) const;
   bool is_sweep() const { return static_cast<bool>(sweeper_); }
 
  private:
   SolverOptions solver_;
   std::unique_ptr<L2Solver> l2_;
   std::unique_ptr<RelaxSweeper> sweeper_;
+  // linf: the previous step's dual iterate, the next step's warm start (linf_warm_start.h).
+  std::unique_ptr<LinfWarmStart> warm_;
 };
 
 }  // namespace strictmin

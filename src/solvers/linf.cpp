@@ -20,6 +20,7 @@
 #include "linf_main_solve.h"
 #include "linf_phase1.h"
 #include "linf_program.h"
+#include "linf_warm_start.h"
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
@@ -136,7 +137,9 @@ bool LinfOptions::is_valid(std::string* why) const {
       .ok();
 }
 
-Result solve_linf(const Problem& p, const LinfOptions& options) {
+Result solve_linf(const Problem& p, const LinfOptions& options) { return solve_linf_warm(p, options, nullptr); }
+
+Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmStart* warm) {
   const auto t0 = std::chrono::steady_clock::now();
   // 1. Options, element classes, the cases without an answer.
   std::string why;
@@ -241,7 +244,8 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
   analysis.wait();
-  MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+  LinfWarmStart* fitting = warm && warm->fits(mp.prog.cone_size(), mp.prog.num_eq()) ? warm : nullptr;
+  MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, fitting);
   socp::IpmSettings penalty = settings;  // the fallback's (the normal equations keep a reference)
   penalty.eliminate_equalities = false;
   std::string fallback_note;
@@ -252,10 +256,16 @@ Result solve_linf(const Problem& p, const LinfOptions& options) {
     // regions of direct's levels): solve again with the equalities' penalty (kkt.h).
     const int first_iterations = ms.outcome.iterations;
     normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, penalty);
-    ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0);
+    ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, nullptr);
     result.iterations += first_iterations;
     fallback_note = "the eliminated Newton systems could not be factored after " + std::to_string(first_iterations) +
                     " iterations; solved again with the equalities' penalty";
+  }
+  if (warm) {  // the next solve's warm start: this one's last dual iterate
+    warm->z = std::move(ms.final_z);
+    warm->y = std::move(ms.final_y);
+    warm->cone_size = mp.prog.cone_size();
+    warm->num_eq = mp.prog.num_eq();
   }
   const BestSoFar& best = ms.best;
   result.iterations += ms.outcome.iterations;

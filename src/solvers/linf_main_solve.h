@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "linf_program.h"
+#include "linf_warm_start.h"
 #include "strictmin/solvers/result.h"
 #include "solvers/socp/certificate.h"
 #include "solvers/socp/kkt.h"
@@ -31,6 +32,7 @@ struct MainSolve {
   BestSoFar best;
   socp::IpmOutcome outcome;
   bool stalled = false;  // the certified gap stopped shrinking
+  Eigen::VectorXd final_z, final_y;  // the last dual iterate (a warm start for the next solve)
 };
 
 // Runs phase 2 from `start` (which meets the bounds). `effective_bounds` are the element
@@ -38,6 +40,7 @@ struct MainSolve {
 // reports it to options.progress), elapsed times from t0.
 MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls, const Candidate& start,
                      const Eigen::VectorXd& effective_bounds, socp::NormalEquations* normal_equations,
-                     std::vector<IterationRecord>& history, std::chrono::steady_clock::time_point t0);
+                     std::vector<IterationRecord>& history, std::chrono::steady_clock::time_point t0,
+                     const LinfWarmStart* warm);
 
 }  // namespace strictmin::linf_detail

@@ -64,7 +64,7 @@ double early_gap(double last_change) {
 // last global step's, so that a global solve that stopped short shows (result.h).
 Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalGlobalOptions& o,
                std::chrono::steady_clock::time_point t0) {
-  const GlobalStep step(p, solver, o.no_flips || solver.relax.no_flips);
+  const GlobalStep step(p, solver, o.no_flips || solver.relax.no_flips, o.warm_start);
   const Eigen::VectorXd& bounds = solver.linf.element_bounds;
   const bool fixed_count = o.relative_change < 0;  // relax sweeps: run them all
   const bool energy = solver.method == Method::L2;
@@ -75,6 +75,10 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   // The targets of the current map (its local step) and its distortion, in one pass.
   double previous = max_of(local_targets(p, out.positions, o, &p.targets), bounds);
   Eigen::MatrixXd targets;  // the local step of the candidate map
+  const double beta = step.is_sweep() ? 0.0 : o.target_extrapolation;
+  Eigen::MatrixXd plain_targets = p.targets;  // the local step of the current map
+  bool extrapolated = false;                  // p.targets are extrapolated from plain_targets
+  int extrapolations_rejected = 0;
   double last_change = kNotApplicable;
   SolveStatus last_global = SolveStatus::Solved;
   std::string last_global_message;
@@ -87,7 +91,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   for (int it = 1; it <= o.max_iterations && reason.empty(); ++it) {
     check_interrupt();  // solvers/interrupt.h
     const double gap = inexact ? early_gap(last_change) : 0.0;
-    Result r = step.run(p, out.positions, gap);
+    Result r = step.run(p, out.positions, gap, last_change);
     if (!r.usable()) {
       out.status = r.status;
       out.message = "global step " + std::to_string(it) + ": " + r.message;
@@ -100,6 +104,13 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (o.no_flips && !step.is_sweep()) next = cut_back_to_no_new_flips(p, out.positions, next);
     Eigen::VectorXd d = local_targets(p, next, o, &targets);
     double current = max_of(d, bounds);
+    if (extrapolated && current > previous) {
+      // The extrapolated targets led higher: the plain step instead (the guarantee).
+      p.targets = plain_targets;
+      extrapolated = false;
+      ++extrapolations_rejected;
+      continue;
+    }
     // An L-infinity global step cannot raise the maximum beyond its tolerance; keep the
     // better map if rounding (or a loose early step) says otherwise.
     if (solver.method == Method::Linf && current > previous) {
@@ -143,6 +154,11 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     last_global_message = r.message;
     out.positions = std::move(next);
     p.targets.swap(targets);  // the next global step's targets: the local step of the new map
+    if (beta > 0) {
+      Eigen::MatrixXd before = std::move(plain_targets);
+      plain_targets = p.targets;
+      extrapolated = extrapolate_targets(p, before, beta, o, p.targets);
+    }
     out.iterations = it;
     last_change = previous > 0 ? std::abs(previous - current) / previous : 0.0;
     IterationRecord rec;
@@ -180,6 +196,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     reason = "reached the iteration cap (" + std::to_string(o.max_iterations) + "); last relative change " +
              std::to_string(last_change);
   }
+  if (beta > 0) reason += "; extrapolated targets rejected " + std::to_string(extrapolations_rejected);
   if (accelerate)
     reason += "; accelerated steps taken " + std::to_string(accepted) + ", rejected " + std::to_string(rejected);
   out.status = worse_status(decide_status(stop), last_global);
@@ -233,6 +250,8 @@ bool LocalGlobalOptions::is_valid(std::string* why) const {
       .that(acceleration_window >= 0 && acceleration_window <= 50,
             "acceleration_window must be in [0, 50] (got " + std::to_string(acceleration_window) + ")")
       .that(!std::isnan(relative_change), "relative_change must be a number (got nan)")
+      .that(target_extrapolation >= 0 && target_extrapolation <= 1,
+            "target_extrapolation must be in [0, 1] (got " + std::to_string(target_extrapolation) + ")")
       .ok();
 }
 

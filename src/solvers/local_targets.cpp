@@ -77,7 +77,35 @@ void pass(const Problem& p, const Eigen::MatrixXd& X, LocalStep step, Eigen::Vec
   });
 }
 
+template <int n, int m>
+void extrapolate_pass(const Problem& p, const Eigen::MatrixXd& previous, double beta, LocalStep step,
+                      Eigen::MatrixXd& targets) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, p.num_elements(), 1024), [&](const tbb::blocked_range<int>& r) {
+    for (int e = r.begin(); e != r.end(); ++e) {
+      const Mat<n, m> now = targets.middleRows(e * n, n);
+      const Mat<n, m> before = previous.middleRows(e * n, n);
+      const Mat<n, m> M = now + beta * (now - before);
+      Mat<n, m> T;
+      if constexpr (n == 2 && m == 2) T = target_2x2(M, step);
+      else if constexpr (n == 3 && m == 3) T = target_3x3(M, step);
+      else T = target_svd<n, m>(M, step);
+      targets.middleRows(e * n, n) = T;
+    }
+  });
+}
+
 }  // namespace
+
+bool extrapolate_targets(const Problem& p, const Eigen::MatrixXd& previous, double beta, const LocalGlobalOptions& o,
+                         Eigen::MatrixXd& targets) {
+  if (o.shapes.size() != 0 || previous.rows() != targets.rows() || previous.cols() != targets.cols()) return false;
+  const int n = p.image_dim, m = p.domain_dim;
+  if (n == 2 && m == 2) extrapolate_pass<2, 2>(p, previous, beta, o.local, targets);
+  else if (n == 3 && m == 3) extrapolate_pass<3, 3>(p, previous, beta, o.local, targets);
+  else if (n == 3 && m == 2) extrapolate_pass<3, 2>(p, previous, beta, o.local, targets);
+  else return false;
+  return true;
+}
 
 Eigen::VectorXd local_targets(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o,
                               Eigen::MatrixXd* targets) {

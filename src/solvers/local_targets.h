@@ -15,4 +15,10 @@ namespace strictmin {
 Eigen::VectorXd local_targets(const Problem& problem, const Eigen::MatrixXd& X, const LocalGlobalOptions& options,
                               Eigen::MatrixXd* targets);
 
+// Extrapolated targets: each element's target moved on along its last change, then taken
+// back to the nearest rotation (similarity): R + beta (R - R_previous) projected. False (and
+// targets unchanged) where the element kind has no fixed-size local step (interpolation's shapes).
+bool extrapolate_targets(const Problem& problem, const Eigen::MatrixXd& previous, double beta,
+                         const LocalGlobalOptions& options, Eigen::MatrixXd& targets);
+
 }  // namespace strictmin

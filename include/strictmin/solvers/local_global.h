@@ -37,6 +37,17 @@ struct LocalGlobalOptions {
   // last relative change); the step that meets the stopping criterion is repeated at the
   // solver's own gap_tolerance, so the final map is certified as without this.
   bool inexact_early_steps = true;
+  // linf global steps (and those within each level of direct) start from the previous
+  // step's dual iterate: the cone program's dual does not depend on the targets, so it is
+  // still nearly feasible and nearly optimal, and a step takes about half the interior-point
+  // iterations of a cold start (docs/arap.md). Results meet the same criteria either way.
+  bool warm_start = true;
+  // Extrapolated targets (a momentum on the rotations): after a step whose map moved every
+  // target from R_prev to R, the next global step's target is R + beta (R - R_prev) taken back
+  // to the nearest rotation (similarity). A step whose maximum ends above the previous one is
+  // repeated with the plain targets, so the maximum still never increases. 0: off. Not used
+  // for relax sweeps or interpolation's shapes.
+  double target_extrapolation = 0.5;
   // Methods other than l2 first run l2 local-global from the given start (cheap: one
   // factorization, accelerated back-substitutions) and start from its map when its maximum
   // is lower and it has no more flipped elements than the start (a map with more leads linf
@@ -56,7 +67,7 @@ struct LocalGlobalOptions {
   std::function<void(const IterationRecord&)> progress;
 
   // Ranges: max_iterations >= 0, acceleration_window in [0, 50], relative_change not NaN (negative: never stop on the
-  // change), shapes empty or #E*n by m (checked against the problem by local_global).
+  // change), target_extrapolation in [0, 1], shapes empty or #E*n by m (checked against the problem by local_global).
   bool is_valid(std::string* why = nullptr) const;
 };
 

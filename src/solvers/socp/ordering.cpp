@@ -3,6 +3,8 @@
 #include <Eigen/SparseCore>
 #include <cholmod.h>
 #include <algorithm>
+#include <deque>
+#include <mutex>
 #include <numeric>
 
 #include "solvers/cholmod_view.h"
@@ -31,11 +33,60 @@ struct LowerGraph {
   }
 };
 
+// The last few orderings and their graphs. A sequence of solves on one mesh (local-global's
+// global steps, direct's levels, qc/iso frames) orders the same graph again and again, and
+// METIS is a sixth of such a step's time at 20k elements. The orderings are deterministic
+// functions of the graph (METIS's generator is seeded on every call), so a remembered answer
+// is the one a new call would give: results stay bitwise the same.
+class OrderingMemo {
+ public:
+  // kind: which function (bisection, ordering with its threshold).
+  bool find(int kind, const std::vector<int>& offset, const std::vector<int>& adj, std::vector<int>& out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const Entry& e : entries_)
+      if (e.kind == kind && e.offset == offset && e.adj == adj) {
+        out = e.result;
+        return true;
+      }
+    return false;
+  }
+  void keep(int kind, const std::vector<int>& offset, const std::vector<int>& adj, const std::vector<int>& result) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.push_front(Entry{kind, offset, adj, result});
+    if (entries_.size() > kEntries) entries_.pop_back();
+  }
+
+ private:
+  struct Entry {
+    int kind;
+    std::vector<int> offset, adj, result;
+  };
+  static constexpr size_t kEntries = 6;  // a bisection and its two halves, for two meshes
+  std::mutex mutex_;
+  std::deque<Entry> entries_;
+};
+
+OrderingMemo& memo() {
+  static OrderingMemo m;
+  return m;
+}
+
+constexpr int kBisection = -1;  // the memo's kind for vertex_bisection (orderings: their threshold)
+
 }  // namespace
 
 std::vector<int> vertex_bisection(const std::vector<int>& offset, const std::vector<int>& adj) {
   const int n = static_cast<int>(offset.size()) - 1;
   if (n < 3) return {};
+  std::vector<int> remembered;
+  if (memo().find(kBisection, offset, adj, remembered)) return remembered;
+  std::vector<int> part = compute_bisection(offset, adj);
+  memo().keep(kBisection, offset, adj, part);
+  return part;
+}
+
+std::vector<int> compute_bisection(const std::vector<int>& offset, const std::vector<int>& adj) {
+  const int n = static_cast<int>(offset.size()) - 1;
   LowerGraph g(offset, adj);
   cholmod_common common;
   cholmod_start(&common);
@@ -87,6 +138,16 @@ std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::ve
 }
 
 std::vector<int> vertex_ordering(const std::vector<int>& offset, const std::vector<int>& adj, int metis_threshold) {
+  const int n = static_cast<int>(offset.size()) - 1;
+  if (n < 3) return compute_ordering(offset, adj, metis_threshold);
+  std::vector<int> remembered;
+  if (memo().find(metis_threshold, offset, adj, remembered)) return remembered;
+  std::vector<int> order = compute_ordering(offset, adj, metis_threshold);
+  memo().keep(metis_threshold, offset, adj, order);
+  return order;
+}
+
+std::vector<int> compute_ordering(const std::vector<int>& offset, const std::vector<int>& adj, int metis_threshold) {
   const int n = static_cast<int>(offset.size()) - 1;
   std::vector<int> order(std::max(n, 0));
   std::iota(order.begin(), order.end(), 0);

@@ -23,4 +23,9 @@ std::vector<int> vertex_bisection(const std::vector<int>& offset, const std::vec
 std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
                                    const std::vector<int>& part, int sizes[3]);
 
+// vertex_ordering and vertex_bisection remember their last few graphs and answers (the same
+// graph is ordered again by every solve of a sequence); these compute without the memo.
+std::vector<int> compute_ordering(const std::vector<int>& offset, const std::vector<int>& adj, int metis_threshold);
+std::vector<int> compute_bisection(const std::vector<int>& offset, const std::vector<int>& adj);
+
 }  // namespace strictmin::socp

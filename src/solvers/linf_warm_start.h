@@ -1,0 +1,35 @@
+#pragma once
+// A warm start for a sequence of L-infinity solves of one program structure whose constant
+// terms change a little between solves: local-global's global steps (the targets R_T move
+// with each local step) and the steps within one level of direct. Private to the solvers.
+//
+// The dual of the cone program does not depend on the targets (M^T z + c = 0 involves only
+// the Jacobian operators and the heads' k coefficients, docs/maths.md section 3), so the
+// last dual iterate of the previous solve is (nearly) dual feasible for the next one and its
+// objective is already close to the next optimum: the interior-point method then starts a
+// few iterations from the end instead of from a generic centred point. To keep the start
+// well centred, the kept dual is blended with the centred dual of the new start
+// (linf_main_solve.cpp), and the primal k starts just above the start map's maximum.
+#include <Eigen/Core>
+
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/result.h"
+
+namespace strictmin {
+
+struct LinfWarmStart {
+  Eigen::VectorXd z, y;  // the last interior-point dual iterate (cones, equalities)
+  long cone_size = -1;   // the program's shape it belongs to
+  long num_eq = -1;
+  // The relative change of the start map's maximum expected in the next solve (the caller's
+  // last relative change); k starts this far above the maximum (at least 1e-4, at most 1e-1).
+  double expected_change = 1e-2;
+  bool fits(long cones, long eqs) const { return cone_size == cones && num_eq == eqs && z.size() == cones; }
+};
+
+// solve_linf, started from *warm when it fits the program (then updated with this solve's
+// last dual iterate); warm == nullptr is solve_linf itself.
+Result solve_linf_warm(const Problem& problem, const LinfOptions& options, LinfWarmStart* warm);
+
+}  // namespace strictmin
