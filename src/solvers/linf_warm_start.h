@@ -8,8 +8,8 @@
 // last dual iterate of the previous solve is (nearly) dual feasible for the next one and its
 // objective is already close to the next optimum: the interior-point method then starts a
 // few iterations from the end instead of from a generic centred point. To keep the start
-// well centred, the kept dual is blended with the centred dual of the new start
-// (linf_main_solve.cpp), and the primal k starts just above the start map's maximum.
+// centred enough, each cone's head of the kept dual is raised a little (linf_main_solve.cpp,
+// warm_initialize), and the primal k starts just above the start map's maximum.
 #include <Eigen/Core>
 
 #include "strictmin/problem/problem.h"

@@ -75,7 +75,9 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   // The targets of the current map (its local step) and its distortion, in one pass.
   double previous = max_of(local_targets(p, out.positions, o, &p.targets), bounds);
   Eigen::MatrixXd targets;  // the local step of the candidate map
-  const double beta = step.is_sweep() ? 0.0 : o.target_extrapolation;
+  // Extrapolated targets where the maximum is the objective the guarantee is about (linf and
+  // direct's levels); l2's fixed point is reached faster by Anderson on its energy.
+  const double beta = solver.method == Method::Linf ? o.target_extrapolation : 0.0;
   Eigen::MatrixXd plain_targets = p.targets;  // the local step of the current map
   bool extrapolated = false;                  // p.targets are extrapolated from plain_targets
   int extrapolations_rejected = 0;

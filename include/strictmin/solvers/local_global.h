@@ -45,8 +45,8 @@ struct LocalGlobalOptions {
   // Extrapolated targets (a momentum on the rotations): after a step whose map moved every
   // target from R_prev to R, the next global step's target is R + beta (R - R_prev) taken back
   // to the nearest rotation (similarity). A step whose maximum ends above the previous one is
-  // repeated with the plain targets, so the maximum still never increases. 0: off. Not used
-  // for relax sweeps or interpolation's shapes.
+  // repeated with the plain targets, so the maximum still never increases. 0: off. For linf
+  // global steps (and direct's levels); not for interpolation's shapes.
   double target_extrapolation = 0.5;
   // Methods other than l2 first run l2 local-global from the given start (cheap: one
   // factorization, accelerated back-substitutions) and start from its map when its maximum
