@@ -38,7 +38,7 @@ constexpr double kWarmLift = 0.1;
 
 void warm_initialize(const socp::ConeProgram& prog, const Candidate& start, const LinfWarmStart& warm,
                      socp::IpmState& st) {
-  const double rise = std::clamp(warm.expected_change, 1e-4, 1e-1);
+  const double rise = std::clamp(warm.expected_change, 1e-4, 1e-2);
   const double scale = std::max(std::abs(start.kmax), 1e-3);
   socp::initialize(prog, start.x, start.kmax + rise * scale, rise * scale, 1.0, st);
   st.z = warm.z;

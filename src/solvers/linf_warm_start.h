@@ -23,7 +23,7 @@ struct LinfWarmStart {
   long cone_size = -1;   // the program's shape it belongs to
   long num_eq = -1;
   // The relative change of the start map's maximum expected in the next solve (the caller's
-  // last relative change); k starts this far above the maximum (at least 1e-4, at most 1e-1).
+  // last relative change); k starts this far above the maximum (at least 1e-4, at most 1e-2).
   double expected_change = 1e-2;
   bool fits(long cones, long eqs) const { return cone_size == cones && num_eq == eqs && z.size() == cones; }
 };
