@@ -244,7 +244,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
   analysis.wait();
-  LinfWarmStart* fitting = warm && warm->fits(mp.prog.cone_size(), mp.prog.num_eq()) ? warm : nullptr;
+  LinfWarmStart* fitting = warm && warm->fits(mp.prog.cone_size(), mp.prog.num_eq()) && warm->close_enough() ? warm : nullptr;
   MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, fitting);
   socp::IpmSettings penalty = settings;  // the fallback's (the normal equations keep a reference)
   penalty.eliminate_equalities = false;
