@@ -22,8 +22,9 @@ inline Eigen::Matrix3d closest_rotation3(const Eigen::Matrix3d& J) {
   // A determinant this small relative to |J|^3 leaves the polar factor ill-determined in
   // double precision: the SVD decides there.
   constexpr double kMinRelativeDet = 1e-10;
-  // Stop once a step moves X by less than this (relative): the error is then about its square.
-  constexpr double kSettled = 1e-9;
+  // Stop once a step moves X by less than this (relative): X's error is then about its square
+  // (quadratic convergence, ~1e-10), and the plain Newton step after the loop squares it again.
+  constexpr double kSettled = 1e-5;
   constexpr int kMaxSteps = 30;
   const double scale = J.norm();
   if (!(scale > 0) || !std::isfinite(scale) || J.determinant() <= kMinRelativeDet * scale * scale * scale)
