@@ -19,8 +19,11 @@ class GlobalStep {
  public:
   // relax: one sweep per step (its rings in the kernel when no_flips); l2: one
   // factorization for every step; the other methods: a solve from the current map.
+  // constrained_steps: linf steps on planar maps stay inside the orientation-preserving cones
+  // around the current map (no_flips_linf.h; local-global's own no_flips, not relax's);
   // warm_start: linf steps start from the previous step's dual (linf_warm_start.h).
-  GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips, bool warm_start);
+  GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips, bool constrained_steps,
+             bool warm_start);
   // The step for the problem's current targets from the map X (#V by n). gap > 0 loosens a
   // linf solve's gap tolerance to it (an inexact early step).
   // expected_change: the last relative change of the maximum (NaN: unknown), how far above
@@ -30,6 +33,7 @@ class GlobalStep {
 
  private:
   SolverOptions solver_;
+  bool no_flips_ = false;  // linf on planar maps: the step inside the orientation-preserving cones
   std::unique_ptr<L2Solver> l2_;
   std::unique_ptr<RelaxSweeper> sweeper_;
   // linf: the previous step's dual iterate, the next step's warm start (linf_warm_start.h).

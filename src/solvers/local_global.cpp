@@ -64,7 +64,7 @@ double early_gap(double last_change) {
 // last global step's, so that a global solve that stopped short shows (result.h).
 Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalGlobalOptions& o,
                std::chrono::steady_clock::time_point t0) {
-  const GlobalStep step(p, solver, o.no_flips || solver.relax.no_flips, o.warm_start);
+  const GlobalStep step(p, solver, o.no_flips || solver.relax.no_flips, o.no_flips, o.warm_start);
   const Eigen::VectorXd& bounds = solver.linf.element_bounds;
   const bool fixed_count = o.relative_change < 0;  // relax sweeps: run them all
   const bool energy = solver.method == Method::L2;

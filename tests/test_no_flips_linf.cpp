@@ -1,0 +1,82 @@
+// The linf global step inside the orientation-preserving cones (solvers/no_flips_linf.h),
+// against the field-deviation L-infinity solver (an independent program and solver): where
+// the cones do not bind, the same optimum; where they do, no better, and no flip added.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
+
+#include "strictmin/measures/field_deviation.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf.h"
+#include "strictmin/solvers/no_flips.h"
+#include "solvers/no_flips_linf.h"
+
+using namespace strictmin;
+
+namespace {
+
+// A 24 x 4 bar of [0, 6] x [0, 1], its ends turned by -+angle and moved to x = ends, 6 - ends.
+Problem bar(double angle, double ends) {
+  const Mesh m = make_grid(24, 4, 6.0, 1.0);
+  std::vector<Handle> handles;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.V(v, 0);
+    if (x > 0 && x < 6.0) continue;
+    const Eigen::Vector2d c(x, 0.5), to(x == 0 ? ends : 6.0 - ends, 0.5);
+    handles.push_back({v, Eigen::Rotation2Dd(x == 0 ? -angle : angle) * (m.V.row(v).transpose() - c) + to});
+  }
+  Problem p = make_problem(m);
+  p.fix(handles);
+  return p;
+}
+
+int flipped(const Problem& p, const Eigen::MatrixXd& X) {
+  const Eigen::VectorXi positive = positively_oriented(p, X);
+  return static_cast<int>(positive.size() - positive.sum());
+}
+
+}  // namespace
+
+// Ends turned by 0.6 rad, not moved: from the L2 map, the unconstrained optimum adds no flip,
+// so the cones do not bind and both programs have the same optimum (each to a gap of 1e-8).
+TEST(NoFlipsLinf, SameOptimumWhereTheConesDoNotBind) {
+  Problem p = bar(0.6, 0.0);
+  const Eigen::MatrixXd X0 = solve_l2(p).positions;
+  ASSERT_EQ(flipped(p, X0), 0);
+  p.positions = X0;
+  const Result free_step = solve_linf(p, {});
+  ASSERT_EQ(free_step.status, SolveStatus::Solved) << free_step.message;
+  ASSERT_EQ(flips_added(p, X0, free_step.positions), 0);
+  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+  ASSERT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
+  const double k_free = free_step.distortion.maxCoeff(), k_cone = cone_step.distortion.maxCoeff();
+  EXPECT_NEAR(k_cone, k_free, 1e-6 * k_free);
+  EXPECT_LE(cone_step.lower_bound, k_cone * (1 + 1e-9));
+  EXPECT_GE(cone_step.lower_bound, k_free * (1 - 1e-6));
+  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+  std::printf("free %.10f, cones %.10f (bound %.10f, %d iterations)\n", k_free, k_cone, cone_step.lower_bound,
+              cone_step.iterations);
+}
+
+// Ends squeezed to a third of the bar and turned inwards by 1.6 rad: the L-infinity optimum
+// from the L2 map flips elements that the cone step keeps positive; its maximum is no lower
+// than the unconstrained optimum and no higher than the start's.
+TEST(NoFlipsLinf, NoFlipAddedWhereTheConesBind) {
+  Problem p = bar(1.6, 2.0);
+  const Eigen::MatrixXd X0 = solve_l2(p).positions;
+  p.positions = X0;
+  const Result free_step = solve_linf(p, {});
+  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+  std::printf("start: %d flipped, max %.6g; free: max %.6g, %d added; cones: max %.6g, %d added (%s)\n", flipped(p, X0),
+              field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
+              flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
+              flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
+  EXPECT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
+  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+  EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
+  EXPECT_LE(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
+}
