@@ -24,6 +24,7 @@ struct GParamArgs {
   bool edge_length_given = false, quads_given = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
+  LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start
   SolverArgs solver;
   OutputOptions out;
   ReportArgs report;
@@ -52,6 +53,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   o.solver = make_solver_options(a.solver, a.out);
   o.local_global.max_iterations = a.lg_iterations;
   o.local_global.relative_change = a.lg_tolerance;
+  apply_local_global_step_options(a.lg_steps, o.local_global);
   if (!a.out.quiet) {
     o.progress = [](const std::string& line) { std::fprintf(stderr, "gparam %s\n", line.c_str()); };
     o.local_global.progress = [](const IterationRecord& r) { print_local_global_progress(r, ""); };
@@ -114,6 +116,7 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative, >= 0)")
       ->capture_default_str()
       ->check(at_least(0));
+  add_local_global_step_options(*cmd, args->lg_steps);
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);

@@ -62,14 +62,7 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
       ->check(at_least(1));
 }
 
-void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
-  cmd.add_option("--lg-iterations", a.lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
-      ->capture_default_str()
-      ->check(at_least(1));
-  cmd.add_option("--lg-tolerance", a.lg_tolerance,
-                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
-      ->capture_default_str()
-      ->check(at_least(0));
+void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& a) {
   cmd.add_option("--lg-acceleration", a.lg_acceleration,
                   "arap/asap: Anderson acceleration window of local-global (0: off); an accelerated step is "
                   "taken only when it does not raise the maximum (l2: the energy)")
@@ -83,18 +76,34 @@ void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
   cmd.add_flag("--lg-cold-start", a.lg_cold_start,
                 "arap/asap with linf/direct: start every global step's interior-point method afresh (default: from "
                 "the previous step's dual)");
+}
+
+void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
+  cmd.add_option("--lg-iterations", a.lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
+  cmd.add_option("--lg-tolerance", a.lg_tolerance,
+                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
+      ->capture_default_str()
+      ->check(at_least(0));
+  add_local_global_step_options(cmd, a);
   cmd.add_flag("--no-flips", a.no_flips,
-                "planar/disk and tet maps: add no flipped element to the start (global steps cut back, relax moves "
+                "planar/disk and tet maps: add no flipped element to the start (linf steps inside orientation-preserving "
+                "cones on planar maps, other steps cut back, relax moves "
                 "kept in their rings' kernels); the summary's flips_added counts them. Refused on a triangle surface "
                 "in 3D (a 3x2 Jacobian has no orientation)");
+}
+
+void apply_local_global_step_options(const LocalGlobalArgs& a, LocalGlobalOptions& o) {
+  o.acceleration_window = a.lg_acceleration;
+  o.target_extrapolation = a.lg_extrapolation;
+  o.warm_start = !a.lg_cold_start;
 }
 
 void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o) {
   o.max_iterations = a.lg_iterations;
   o.relative_change = a.lg_tolerance;
-  o.acceleration_window = a.lg_acceleration;
-  o.target_extrapolation = a.lg_extrapolation;
-  o.warm_start = !a.lg_cold_start;
+  apply_local_global_step_options(a, o);
 }
 
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {

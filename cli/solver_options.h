@@ -46,6 +46,9 @@ struct LocalGlobalArgs {
   bool no_flips = false;
 };
 void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& args);
+// Only the steps' flags (--lg-acceleration, --lg-extrapolation, --lg-cold-start): gparam's arap.
+void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& args);
+void apply_local_global_step_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
 // Sets the local-global options from the flags (the caller sets no_flips on its task).
 void apply_local_global_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
 
