@@ -16,7 +16,8 @@ class OptionRanges(unittest.TestCase):
         ("--irls-iterations", "-1"), ("--accept-tolerance", "1"), ("--move-tolerance", "-1"),
         ("--level-gap", "2"), ("--moving-rings", "-1"), ("--exact-max-elements", "0"),
         ("--lg-iterations", "0"), ("--lg-tolerance", "-1"), ("--threads", "-1"), ("--delta-k", "abc"),
-        ("--frame-iterations", "0"),
+        ("--frame-iterations", "0"), ("--lg-extrapolation", "1.5"), ("--lg-extrapolation", "-0.1"),
+        ("--lg-acceleration", "51"),
     ]
 
     def test_out_of_range_flags_exit_1_naming_the_flag(self):

@@ -255,3 +255,16 @@ def test_iso_frame_iteration_cap():
     assert full.summary["max_distortion"] <= r.summary["max_distortion"] + 1e-9
     with pytest.raises(ValueError, match="frame_iterations"):
         strictmin.param(V, F, method="linf", measure="iso", frame_iterations=0)
+
+
+def test_local_global_step_options():
+    # lg_extrapolation / lg_warm_start / lg_acceleration reach local-global: a run without the
+    # faster steps ends at the same local optimum to the stopping tolerance; out-of-range
+    # values are refused naming the option.
+    V, F, idx, pos = pulled_square(6)
+    fast = strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_tolerance=1e-8, lg_iterations=300)
+    plain = strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_tolerance=1e-8, lg_iterations=300,
+                             lg_extrapolation=0.0, lg_warm_start=False, lg_acceleration=0)
+    assert abs(fast.max_distortion - plain.max_distortion) <= 1e-6
+    with pytest.raises(ValueError, match="target_extrapolation"):
+        strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_extrapolation=1.5)
