@@ -332,10 +332,10 @@ double l2_norm(const MapDistortion& m) {
 
 // A tube bent by its end rings (16 around, 12 along, 384 triangles; the axis bent into an arc
 // of 1 radian), ARAP: relax (linf local-global, then its 50 sweeps, each followed by a local
-// step) is never above linf's maximum (ties within 1e-4 relative), is less distorting in the
-// strict order, and lowers the area-weighted L2 norm (0.07594 against 0.07686). The area
-// above 90% of linf's maximum is not lowered there (10.01 of 12.49 in both: a bent tube is
-// stretched almost evenly); the area above 99% is (4.81 against 7.80). docs/arap.md.
+// step) is never above linf's maximum (ties within 1e-4 relative) and is less distorting in
+// the strict order. With linf's local-global converged (95 steps, max 0.080613) relax ends at
+// the same maximum with a higher L2 norm (0.07497 against 0.07054) and more area near the top
+// (5.85 against 5.33 above 99%): it lowers the top levels, not the rest. docs/arap.md.
 TEST(SurfaceDeformation, BentTubeRelaxBelowLinf) {
   const double L = 4.0;
   const Mesh tube = make_tube(16, 12, 0.5, L);
@@ -360,8 +360,9 @@ TEST(SurfaceDeformation, BentTubeRelaxBelowLinf) {
   const StrictComparison c =
       compare_strict(relax.measured.distortion, linf.measured.distortion, linf.measured.weights, 1e-4 * k);
   EXPECT_EQ(c.order, StrictOrder::Less) << describe(c, "relax", "linf");
-  EXPECT_LT(l2_norm(relax.measured), l2_norm(linf.measured));
-  EXPECT_LE(area_above(relax.measured, 0.99 * k), area_above(linf.measured, 0.99 * k));
+  // The L2 norm and the area near the top are not what relax minimizes (the strict order is):
+  // recorded, not asserted (docs/arap.md has the figures).
+  std::printf("linf: %s\nrelax: %s\n", linf.result.message.c_str(), relax.result.message.c_str());
   // The sweeps ran after linf's local-global, each recorded; the maximum never rose.
   ASSERT_EQ(relax.result.history.size(), linf.result.history.size() + 50);
   for (size_t i = 1; i < relax.result.history.size(); ++i)
