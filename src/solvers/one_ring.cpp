@@ -22,6 +22,8 @@
 #include <cmath>
 #include <limits>
 
+#include "small_lu.h"
+
 namespace strictmin {
 namespace {
 
@@ -201,26 +203,24 @@ template <int d>
 bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
   const int m = k - 1;
   if (m == 0) return true;
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, d, d>;
-  using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, d, 1>;
   const RingTerm<d>& t0 = terms[S[0]];
   const Vec<d> g0 = t0.a * (c.q - t0.centre);
   const double f0 = term_value(t0, c.q);
-  Small J(m, m);
-  SmallVec r(m);
+  double J[d][d], step[d];
   std::array<Vec<d>, d> E;
   for (int i = 0; i < m; ++i) E[i] = terms[S[i + 1]].centre - t0.centre;
   for (int i = 0; i < m; ++i) {
     const RingTerm<d>& t = terms[S[i + 1]];
-    r(i) = term_value(t, c.q) - f0;
+    step[i] = term_value(t, c.q) - f0;
     const Vec<d> g = 2 * (t.a * (c.q - t.centre) - g0);  // gradient of the residual in q
-    for (int j = 0; j < m; ++j) J(i, j) = g.dot(E[j]);
+    for (int j = 0; j < m; ++j) J[i][j] = g.dot(E[j]);
   }
-  const SmallVec step = J.partialPivLu().solve(r);
-  if (!step.allFinite()) return false;
+  small_lu_solve<d>(J, step, m);
+  for (int j = 0; j < m; ++j)
+    if (!std::isfinite(step[j])) return false;
   for (int j = 0; j < m; ++j) {
-    c.q -= step(j) * E[j];
-    c.mu[j] -= step(j);
+    c.q -= step[j] * E[j];
+    c.mu[j] -= step[j];
   }
   return true;
 }
@@ -249,10 +249,22 @@ struct SubsetOrder {
   }
 };
 
-// The term with the largest value at q (and that value). Values first, then a max with
-// independent lanes, then the index: no loop-carried compare-and-select chain.
+// The term with the largest value at q (and that value). Short rings (planar ones: 6
+// triangles on average) in one scan; longer ones values first, then a max with independent
+// lanes, then the index: no loop-carried compare-and-select chain.
+constexpr int kShortRing = 12;
 template <int d>
 int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top) {
+  if (n <= kShortRing) {  // the same index and value as the chunks below: the first largest, NaN skipped
+    int best = 0;
+    top = -1;
+    for (int i = 0; i < n; ++i)
+      if (const double v = term_value(terms[i], q); v > top) {
+        top = v;
+        best = i;
+      }
+    return best;
+  }
   constexpr int kChunk = 32;
   double values[kChunk];
   int best = 0;
