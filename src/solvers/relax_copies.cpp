@@ -265,25 +265,11 @@ void apply_move(const Groups& g, int i, int first, int n, const Vec2& q, Eigen::
     g.dirty[g.neighbours[k]].store(1, std::memory_order_relaxed);
 }
 
-// Groups are visited in sweep order and their ring elements' D_T are scattered in memory:
-// the deviations of a group a few places ahead are fetched while this one is solved.
-constexpr int kPrefetchAhead = 2;
-
-void prefetch_ring(const Groups& g, const std::vector<Mat2>& D, int i) {
-  if (i >= static_cast<int>(g.order.size())) return;
-  for (int k = g.ring_start[i]; k < g.ring_start[i + 1]; ++k) {
-    const char* at = reinterpret_cast<const char*>(&D[g.ring[k].element]);
-    __builtin_prefetch(at);
-    __builtin_prefetch(at + sizeof(Mat2) - 1);
-  }
-}
-
 // One group's 1-ring move, updating X and D; accumulates the move and the final values of
 // the elements it is last to touch.
 void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
                 std::vector<Mat2>& D, Accumulator& acc) {
   const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
-  prefetch_ring(g, D, i + kPrefetchAhead);
   // Only this thread touches group i's flag during its colour (no neighbour has the same
   // colour): a plain load and store, no locked exchange.
   const bool dirty = g.dirty[i].load(std::memory_order_relaxed);
