@@ -23,6 +23,7 @@
 #include <limits>
 
 #include "small_lu.h"
+#include "socp/vector_clones.h"
 
 namespace strictmin {
 namespace {
@@ -60,7 +61,7 @@ struct Candidate {
 // s). Solved for a given s, x = x_u + s x_w within span{e_i}, and s = ||x||^2 becomes a
 // scalar quadratic; its roots whose barycentric coordinates are >= 0 are the candidates.
 template <int d>
-int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
+[[gnu::always_inline]] inline int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
   if (k == 1) {
     out[0].q = terms[S[0]].centre;
     return 1;
@@ -200,7 +201,7 @@ int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
 // closed forms lose digits when the spheres are nearly tangent or a's differ by orders of
 // magnitude; the residuals, evaluated term by term, do not. Returns false if singular.
 template <int d>
-bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
+[[gnu::always_inline]] inline bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
   const int m = k - 1;
   if (m == 0) return true;
   const RingTerm<d>& t0 = terms[S[0]];
@@ -226,7 +227,7 @@ bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
 }
 
 template <int d>
-bool inside_hull(const Candidate<d>& c, int k) {
+[[gnu::always_inline]] inline bool inside_hull(const Candidate<d>& c, int k) {
   double sum = 0;
   for (int i = 0; i < k - 1; ++i) {
     if (!(c.mu[i] >= -kBaryTol)) return false;
@@ -254,7 +255,7 @@ struct SubsetOrder {
 // lanes, then the index: no loop-carried compare-and-select chain.
 constexpr int kShortRing = 12;
 template <int d>
-int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top) {
+[[gnu::always_inline]] inline int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top) {
   if (n <= kShortRing) {  // the same index and value as the chunks below: the first largest, NaN skipped
     int best = 0;
     top = -1;
@@ -293,7 +294,7 @@ int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top)
 // Checks a candidate point of the support set S (k terms): Newton-polishes it when the
 // terms of S are nearly but not quite equal, then returns max over S and min over S.
 template <int d>
-void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, double& hs, double& ls) {
+[[gnu::always_inline]] inline void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, double& hs, double& ls) {
   for (int attempt = 0;; ++attempt) {
     hs = 0, ls = std::numeric_limits<double>::infinity();
     for (int i = 0; i < k; ++i) {
@@ -310,7 +311,7 @@ void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, do
 
 // The KKT point of the guessed support set, if it is one (a start for the pivoting).
 template <int d>
-bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int guess_size, int* basis, int& nb,
+[[gnu::always_inline]] inline bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int guess_size, int* basis, int& nb,
                       Vec<d>& q, double& level) {
   if (guess_size < 1 || guess_size > d + 1) return false;
   int S[d + 1];
@@ -336,10 +337,10 @@ bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int gue
   return false;
 }
 
-}  // namespace
-
+// The pivoting (solve_one_ring below).
 template <int d>
-RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess, int guess_size) {
+[[gnu::always_inline]] inline RingSolution<d> solve_ring(const RingTerm<d>* terms, int n, const int* guess,
+                                                         int guess_size) {
   static constexpr SubsetOrder<d> kSubsets{};
   RingSolution<d> sol;
   sol.q.setZero();
@@ -425,6 +426,26 @@ RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess
   sol.active = best_nb;
   std::copy(best_basis, best_basis + best_nb, sol.support.begin());
   return sol;
+}
+
+// The solver compiled for AVX2 as well as the baseline (socp/vector_clones.h): the VEX
+// encoding's three operands spare register copies; without FMA every operation rounds as the
+// baseline's, so the answers are bitwise the same.
+STRICTMIN_VECTOR_CLONES
+RingSolution<2> solve_clones(const RingTerm<2>* terms, int n, const int* guess, int guess_size) {
+  return solve_ring<2>(terms, n, guess, guess_size);
+}
+
+STRICTMIN_VECTOR_CLONES
+RingSolution<3> solve_clones(const RingTerm<3>* terms, int n, const int* guess, int guess_size) {
+  return solve_ring<3>(terms, n, guess, guess_size);
+}
+
+}  // namespace
+
+template <int d>
+RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess, int guess_size) {
+  return solve_clones(terms, n, guess, guess_size);
 }
 
 template <int d>

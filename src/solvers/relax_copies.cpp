@@ -27,6 +27,7 @@
 
 #include "ring_order.h"
 #include "relax_sweep.h"
+#include "socp/vector_clones.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/one_ring.h"
@@ -212,7 +213,7 @@ struct Accumulator {
 // The planar sweep's acceptance (relax_sweep.cpp, accept_move): the ring maximum must go
 // down, and either its top level drops by more than tau = tolerance * (ring maximum) or the
 // ring improves in the area-weighted strict order with values within tau equal.
-bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, const Vec2& q, double value,
+[[gnu::always_inline]] inline bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, const Vec2& q, double value,
             double current, double tolerance) {
   if (!(value < current * (1 - kAcceptRelative))) return false;
   const double top = std::sqrt(current), tau = tolerance * top;
@@ -228,7 +229,7 @@ bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, co
 
 // The ring's terms in the group's displacement delta (of its base): copy v sees
 // R_v^T D_T + delta g^T (the top of this file); returns the ring's current maximum, squared.
-double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int n, Scratch& sc) {
+[[gnu::always_inline]] inline double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int n, Scratch& sc) {
   double current = 0;
   for (int k = 0; k < n; ++k) {
     const RingEntry& r = g.ring[first + k];
@@ -246,7 +247,7 @@ double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int 
 
 // Moves the group by q: each copy by R_v q, each ring element's D_T by (R_v q) g^T; the
 // neighbours must look again.
-void apply_move(const Groups& g, int i, int first, int n, const Vec2& q, Eigen::MatrixXd& X, std::vector<Mat2>& D) {
+[[gnu::always_inline]] inline void apply_move(const Groups& g, int i, int first, int n, const Vec2& q, Eigen::MatrixXd& X, std::vector<Mat2>& D) {
   for (int m = g.member_start[i]; m < g.member_start[i + 1]; ++m) {
     const Member& member = g.members[m];
     const Vec2 d = member.rotation == 0 ? q : Vec2(g.rotations.R[member.rotation] * q);
@@ -267,7 +268,7 @@ void apply_move(const Groups& g, int i, int first, int n, const Vec2& q, Eigen::
 
 // One group's 1-ring move, updating X and D; accumulates the move and the final values of
 // the elements it is last to touch.
-void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
+[[gnu::always_inline]] inline void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
                 std::vector<Mat2>& D, Accumulator& acc) {
   const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
   // Only this thread touches group i's flag during its colour (no neighbour has the same
@@ -306,6 +307,16 @@ void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scra
     }
 }
 
+// Groups begin..end-1 of one colour, one after the other. Compiled for AVX2 as well as the
+// baseline (socp/vector_clones.h): the VEX encoding's three operands spare the register
+// copies of this scalar-heavy code; without FMA every operation rounds as the baseline's, so
+// the maps are bitwise the same.
+STRICTMIN_VECTOR_CLONES
+void move_groups(const Problem& p, const Groups& g, int begin, int end, double tolerance, Scratch& sc,
+                 Eigen::MatrixXd& X, std::vector<Mat2>& D, Accumulator& acc) {
+  for (int i = begin; i != end; ++i) move_group(p, g, i, tolerance, sc, X, D, acc);
+}
+
 }  // namespace
 
 Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const RelaxOptions& options) {
@@ -342,7 +353,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
       const tbb::blocked_range<int> range(g.colour_offsets[c], g.colour_offsets[c + 1], 128);
       total = join(total, tbb::parallel_reduce(range, Accumulator{}, [&](const tbb::blocked_range<int>& r, Accumulator acc) {
         Scratch& sc = scratch.local();
-        for (int i = r.begin(); i != r.end(); ++i) move_group(p, g, i, options.accept_tolerance, sc, X, D, acc);
+        move_groups(p, g, r.begin(), r.end(), options.accept_tolerance, sc, X, D, acc);
         return acc;
       }, join));
     }

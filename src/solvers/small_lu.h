@@ -14,7 +14,7 @@ namespace strictmin {
 // A singular A gives what Eigen's gives (non-finite entries, or finite ones where the
 // right-hand side has zeros).
 template <int N>
-void small_lu_solve(double (&A)[N][N], double (&b)[N], int m) {
+[[gnu::always_inline]] inline void small_lu_solve(double (&A)[N][N], double (&b)[N], int m) {
   for (int k = 0; k < m; ++k) {
     int pivot = k;
     double biggest = std::abs(A[k][k]);
