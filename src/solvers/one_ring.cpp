@@ -38,6 +38,9 @@ constexpr double kValueTol = 1e-13;  // relative: terms within this of the maxim
 constexpr double kRefineTol = 1e-6;  // relative: candidates this close to equal get Newton steps
 constexpr double kPolishedTol = 1e-15;  // relative: ... until their terms agree to this
 
+// The helpers below are always inlined into the pivoting, and so into its AVX2 clones
+// (solve_clones at the end).
+
 template <int d>
 inline double term_value(const RingTerm<d>& t, const Vec<d>& q) {
   return t.a * (q - t.centre).squaredNorm() + t.b;
@@ -294,7 +297,8 @@ template <int d>
 // Checks a candidate point of the support set S (k terms): Newton-polishes it when the
 // terms of S are nearly but not quite equal, then returns max over S and min over S.
 template <int d>
-[[gnu::always_inline]] inline void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, double& hs, double& ls) {
+[[gnu::always_inline]] inline void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand,
+                                         double& hs, double& ls) {
   for (int attempt = 0;; ++attempt) {
     hs = 0, ls = std::numeric_limits<double>::infinity();
     for (int i = 0; i < k; ++i) {
@@ -311,8 +315,8 @@ template <int d>
 
 // The KKT point of the guessed support set, if it is one (a start for the pivoting).
 template <int d>
-[[gnu::always_inline]] inline bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int guess_size, int* basis, int& nb,
-                      Vec<d>& q, double& level) {
+[[gnu::always_inline]] inline bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess,
+                                                    int guess_size, int* basis, int& nb, Vec<d>& q, double& level) {
   if (guess_size < 1 || guess_size > d + 1) return false;
   int S[d + 1];
   for (int i = 0; i < guess_size; ++i) {

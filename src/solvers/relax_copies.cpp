@@ -46,10 +46,11 @@ constexpr uint32_t kNoGuess = 0xffffffffu;
 
 // One element of a group's ring, packed for the sweep (32 bytes): the corner's gradient g,
 // 1 / |g|^2 and the copy's rotation R_v as an index into Groups::rotations (0: the identity,
-// which the sweep skips: R^T D = D).
+// which the sweep skips: I^T D and D agree but for the sign of a zero).
 struct RingEntry {
   int element = 0;
-  uint32_t info = 0;  // rotation index << 1 | last (of the element's moving groups, this one moves last in a sweep)
+  // rotation index << 1 | last (of the element's moving groups, this one moves last in a sweep)
+  uint32_t info = 0;
   double g[2] = {0, 0}, inv_a = 0;
   int rotation() const { return static_cast<int>(info >> 1); }
   bool last() const { return info & 1u; }
@@ -213,8 +214,9 @@ struct Accumulator {
 // The planar sweep's acceptance (relax_sweep.cpp, accept_move): the ring maximum must go
 // down, and either its top level drops by more than tau = tolerance * (ring maximum) or the
 // ring improves in the area-weighted strict order with values within tau equal.
-[[gnu::always_inline]] inline bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, const Vec2& q, double value,
-            double current, double tolerance) {
+// The helpers of move_groups are always inlined into it (and so into its AVX2 clone).
+[[gnu::always_inline]] inline bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n,
+                                          const Vec2& q, double value, double current, double tolerance) {
   if (!(value < current * (1 - kAcceptRelative))) return false;
   const double top = std::sqrt(current), tau = tolerance * top;
   if (value < (top - tau) * (top - tau)) return true;
@@ -229,7 +231,8 @@ struct Accumulator {
 
 // The ring's terms in the group's displacement delta (of its base): copy v sees
 // R_v^T D_T + delta g^T (the top of this file); returns the ring's current maximum, squared.
-[[gnu::always_inline]] inline double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int n, Scratch& sc) {
+[[gnu::always_inline]] inline double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int n,
+                                                  Scratch& sc) {
   double current = 0;
   for (int k = 0; k < n; ++k) {
     const RingEntry& r = g.ring[first + k];
@@ -247,7 +250,8 @@ struct Accumulator {
 
 // Moves the group by q: each copy by R_v q, each ring element's D_T by (R_v q) g^T; the
 // neighbours must look again.
-[[gnu::always_inline]] inline void apply_move(const Groups& g, int i, int first, int n, const Vec2& q, Eigen::MatrixXd& X, std::vector<Mat2>& D) {
+[[gnu::always_inline]] inline void apply_move(const Groups& g, int i, int first, int n, const Vec2& q,
+                                              Eigen::MatrixXd& X, std::vector<Mat2>& D) {
   for (int m = g.member_start[i]; m < g.member_start[i + 1]; ++m) {
     const Member& member = g.members[m];
     const Vec2 d = member.rotation == 0 ? q : Vec2(g.rotations.R[member.rotation] * q);
@@ -268,8 +272,9 @@ struct Accumulator {
 
 // One group's 1-ring move, updating X and D; accumulates the move and the final values of
 // the elements it is last to touch.
-[[gnu::always_inline]] inline void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
-                std::vector<Mat2>& D, Accumulator& acc) {
+[[gnu::always_inline]] inline void move_group(const Problem& p, const Groups& g, int i, double tolerance,
+                                              Scratch& sc, Eigen::MatrixXd& X, std::vector<Mat2>& D,
+                                              Accumulator& acc) {
   const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
   // Only this thread touches group i's flag during its colour (no neighbour has the same
   // colour): a plain load and store, no locked exchange.
