@@ -22,6 +22,9 @@
 #include <cmath>
 #include <limits>
 
+#include "small_lu.h"
+#include "socp/vector_clones.h"
+
 namespace strictmin {
 namespace {
 
@@ -34,6 +37,9 @@ constexpr double kBaryTol = 1e-10;   // barycentric coordinates of a KKT point m
 constexpr double kValueTol = 1e-13;  // relative: terms within this of the maximum count as equal
 constexpr double kRefineTol = 1e-6;  // relative: candidates this close to equal get Newton steps
 constexpr double kPolishedTol = 1e-15;  // relative: ... until their terms agree to this
+
+// The helpers below are always inlined into the pivoting, and so into its AVX2 clones
+// (solve_clones at the end).
 
 template <int d>
 inline double term_value(const RingTerm<d>& t, const Vec<d>& q) {
@@ -58,7 +64,7 @@ struct Candidate {
 // s). Solved for a given s, x = x_u + s x_w within span{e_i}, and s = ||x||^2 becomes a
 // scalar quadratic; its roots whose barycentric coordinates are >= 0 are the candidates.
 template <int d>
-int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
+[[gnu::always_inline]] inline int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
   if (k == 1) {
     out[0].q = terms[S[0]].centre;
     return 1;
@@ -198,35 +204,33 @@ int support_points(const RingTerm<d>* terms, int* S, int k, Candidate<d>* out) {
 // closed forms lose digits when the spheres are nearly tangent or a's differ by orders of
 // magnitude; the residuals, evaluated term by term, do not. Returns false if singular.
 template <int d>
-bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
+[[gnu::always_inline]] inline bool refine(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& c) {
   const int m = k - 1;
   if (m == 0) return true;
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, d, d>;
-  using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, d, 1>;
   const RingTerm<d>& t0 = terms[S[0]];
   const Vec<d> g0 = t0.a * (c.q - t0.centre);
   const double f0 = term_value(t0, c.q);
-  Small J(m, m);
-  SmallVec r(m);
+  double J[d][d], step[d];
   std::array<Vec<d>, d> E;
   for (int i = 0; i < m; ++i) E[i] = terms[S[i + 1]].centre - t0.centre;
   for (int i = 0; i < m; ++i) {
     const RingTerm<d>& t = terms[S[i + 1]];
-    r(i) = term_value(t, c.q) - f0;
+    step[i] = term_value(t, c.q) - f0;
     const Vec<d> g = 2 * (t.a * (c.q - t.centre) - g0);  // gradient of the residual in q
-    for (int j = 0; j < m; ++j) J(i, j) = g.dot(E[j]);
+    for (int j = 0; j < m; ++j) J[i][j] = g.dot(E[j]);
   }
-  const SmallVec step = J.partialPivLu().solve(r);
-  if (!step.allFinite()) return false;
+  small_lu_solve<d>(J, step, m);
+  for (int j = 0; j < m; ++j)
+    if (!std::isfinite(step[j])) return false;
   for (int j = 0; j < m; ++j) {
-    c.q -= step(j) * E[j];
-    c.mu[j] -= step(j);
+    c.q -= step[j] * E[j];
+    c.mu[j] -= step[j];
   }
   return true;
 }
 
 template <int d>
-bool inside_hull(const Candidate<d>& c, int k) {
+[[gnu::always_inline]] inline bool inside_hull(const Candidate<d>& c, int k) {
   double sum = 0;
   for (int i = 0; i < k - 1; ++i) {
     if (!(c.mu[i] >= -kBaryTol)) return false;
@@ -249,10 +253,22 @@ struct SubsetOrder {
   }
 };
 
-// The term with the largest value at q (and that value). Values first, then a max with
-// independent lanes, then the index: no loop-carried compare-and-select chain.
+// The term with the largest value at q (and that value). Short rings (planar ones: 6
+// triangles on average) in one scan; longer ones values first, then a max with independent
+// lanes, then the index: no loop-carried compare-and-select chain.
+constexpr int kShortRing = 12;
 template <int d>
-int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top) {
+[[gnu::always_inline]] inline int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top) {
+  if (n <= kShortRing) {  // the same index and value as the chunks below: the first largest, NaN skipped
+    int best = 0;
+    top = -1;
+    for (int i = 0; i < n; ++i)
+      if (const double v = term_value(terms[i], q); v > top) {
+        top = v;
+        best = i;
+      }
+    return best;
+  }
   constexpr int kChunk = 32;
   double values[kChunk];
   int best = 0;
@@ -281,7 +297,8 @@ int most_violated(const RingTerm<d>* terms, int n, const Vec<d>& q, double& top)
 // Checks a candidate point of the support set S (k terms): Newton-polishes it when the
 // terms of S are nearly but not quite equal, then returns max over S and min over S.
 template <int d>
-void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, double& hs, double& ls) {
+[[gnu::always_inline]] inline void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand,
+                                         double& hs, double& ls) {
   for (int attempt = 0;; ++attempt) {
     hs = 0, ls = std::numeric_limits<double>::infinity();
     for (int i = 0; i < k; ++i) {
@@ -298,8 +315,8 @@ void judge(const RingTerm<d>* terms, const int* S, int k, Candidate<d>& cand, do
 
 // The KKT point of the guessed support set, if it is one (a start for the pivoting).
 template <int d>
-bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int guess_size, int* basis, int& nb,
-                      Vec<d>& q, double& level) {
+[[gnu::always_inline]] inline bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess,
+                                                    int guess_size, int* basis, int& nb, Vec<d>& q, double& level) {
   if (guess_size < 1 || guess_size > d + 1) return false;
   int S[d + 1];
   for (int i = 0; i < guess_size; ++i) {
@@ -324,10 +341,10 @@ bool start_from_guess(const RingTerm<d>* terms, int n, const int* guess, int gue
   return false;
 }
 
-}  // namespace
-
+// The pivoting (solve_one_ring below).
 template <int d>
-RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess, int guess_size) {
+[[gnu::always_inline]] inline RingSolution<d> solve_ring(const RingTerm<d>* terms, int n, const int* guess,
+                                                         int guess_size) {
   static constexpr SubsetOrder<d> kSubsets{};
   RingSolution<d> sol;
   sol.q.setZero();
@@ -413,6 +430,26 @@ RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess
   sol.active = best_nb;
   std::copy(best_basis, best_basis + best_nb, sol.support.begin());
   return sol;
+}
+
+// The solver compiled for AVX2 as well as the baseline (socp/vector_clones.h): the VEX
+// encoding's three operands spare register copies; without FMA every operation rounds as the
+// baseline's, so the answers are bitwise the same.
+STRICTMIN_VECTOR_CLONES
+RingSolution<2> solve_clones(const RingTerm<2>* terms, int n, const int* guess, int guess_size) {
+  return solve_ring<2>(terms, n, guess, guess_size);
+}
+
+STRICTMIN_VECTOR_CLONES
+RingSolution<3> solve_clones(const RingTerm<3>* terms, int n, const int* guess, int guess_size) {
+  return solve_ring<3>(terms, n, guess, guess_size);
+}
+
+}  // namespace
+
+template <int d>
+RingSolution<d> solve_one_ring(const RingTerm<d>* terms, int n, const int* guess, int guess_size) {
+  return solve_clones(terms, n, guess, guess_size);
 }
 
 template <int d>

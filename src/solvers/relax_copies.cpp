@@ -27,6 +27,7 @@
 
 #include "ring_order.h"
 #include "relax_sweep.h"
+#include "socp/vector_clones.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/one_ring.h"
@@ -43,18 +44,34 @@ using Mat2 = Eigen::Matrix2d;
 constexpr double kAcceptRelative = 1e-13;
 constexpr uint32_t kNoGuess = 0xffffffffu;
 
-// One element of a group's ring, packed for the sweep: the corner's gradient g, 1 / |g|^2
-// and the copy's rotation R_v (column-major).
+// One element of a group's ring, packed for the sweep (32 bytes): the corner's gradient g,
+// 1 / |g|^2 and the copy's rotation R_v as an index into Groups::rotations (0: the identity,
+// which the sweep skips: I^T D and D agree but for the sign of a zero).
 struct RingEntry {
   int element = 0;
-  bool last = false;  // of the element's moving groups, this one moves last in a sweep
-  double g[2] = {0, 0}, inv_a = 0, R[4] = {1, 0, 0, 1};
+  // rotation index << 1 | last (of the element's moving groups, this one moves last in a sweep)
+  uint32_t info = 0;
+  double g[2] = {0, 0}, inv_a = 0;
+  int rotation() const { return static_cast<int>(info >> 1); }
+  bool last() const { return info & 1u; }
 };
 
-// A member copy of a group and its rotation.
+// A member copy of a group and its rotation (index into Groups::rotations).
 struct Member {
   int vertex = 0;
-  double R[4] = {1, 0, 0, 1};
+  int rotation = 0;
+};
+
+// The copies' rotations and their transposes: index 0 is the identity (every copy off the
+// seams), shared; any other rotation gets its own index.
+struct Rotations {
+  std::vector<Mat2> R{Mat2::Identity()}, Rt{Mat2::Identity()};
+  int index(const Mat2& M) {
+    if (M == Mat2::Identity()) return 0;
+    R.push_back(M);
+    Rt.push_back(M.transpose());
+    return static_cast<int>(R.size()) - 1;
+  }
 };
 
 struct Groups {
@@ -64,15 +81,16 @@ struct Groups {
   std::vector<Member> members;
   std::vector<int> ring_start;
   std::vector<RingEntry> ring;
+  Rotations rotations;
   std::vector<int> closed;                 // elements no moving group touches
   int max_ring = 0;
   // Per position: the support of the last ring solve (term indices, a byte each, 0xff =
   // none), the next solve's first guess.
   std::unique_ptr<std::atomic<uint32_t>[]> guesses;
-  // The moving groups at each element's corners (position in order, -1 for none), and per
-  // position whether a neighbour moved since the group's last solve: a group whose ring did
-  // not change would solve the same problem again and stay, so it is skipped.
-  std::vector<int> element_groups;
+  // Per position: the other moving groups that share an element with it (CSR), and whether
+  // a neighbour moved since the group's last solve: a group whose ring did not change would
+  // solve the same problem again and stay, so it is skipped.
+  std::vector<int> neighbour_start, neighbours;
   std::unique_ptr<std::atomic<uint8_t>[]> dirty;
 };
 
@@ -85,6 +103,23 @@ Mat2 rotation(const Problem& p, int v) {
 }
 
 int base_of(const Problem& p, int v) { return p.copy_base[v] >= 0 ? p.copy_base[v] : v; }
+
+// Per group, the other groups at the corners of its ring's elements, each once.
+template <class GroupOf>
+void find_neighbours(const Problem& p, Groups& g, const GroupOf& group_of) {
+  const int n = static_cast<int>(g.order.size()), c = p.corners();
+  std::vector<int> seen(n, -1);
+  g.neighbour_start.assign(1, 0);
+  for (int i = 0; i < n; ++i) {
+    for (int k = g.ring_start[i]; k < g.ring_start[i + 1]; ++k)
+      for (int j = 0; j < c; ++j)
+        if (const int o = group_of(p.elements(g.ring[k].element, j)); o >= 0 && o != i && seen[o] != i) {
+          seen[o] = i;
+          g.neighbours.push_back(o);
+        }
+    g.neighbour_start.push_back(static_cast<int>(g.neighbours.size()));
+  }
+}
 
 // Groups that may move: every copy free and the group's transitions closing (base >= 0).
 Groups make_groups(const Problem& p) {
@@ -114,7 +149,7 @@ Groups make_groups(const Problem& p) {
     if (group_of(v) >= 0) {
       Member& m = g.members[fill[group_of(v)]++];
       m.vertex = v;
-      Eigen::Map<Mat2>(m.R) = rotation(p, v);
+      m.rotation = g.rotations.index(rotation(p, v));
     }
   std::vector<int> last_colour(E, -1);
   g.ring_start.assign(n + 1, 0);
@@ -133,11 +168,11 @@ Groups make_groups(const Problem& p) {
       if (i < 0) continue;
       RingEntry& r = g.ring[fill[i]++];
       r.element = e;
-      r.last = col.colour[g.order[i]] == last_colour[e];
+      const bool last = col.colour[g.order[i]] == last_colour[e];
       r.g[0] = p.gradients(e * c + j, 0);
       r.g[1] = p.gradients(e * c + j, 1);
       r.inv_a = 1.0 / (r.g[0] * r.g[0] + r.g[1] * r.g[1]);
-      Eigen::Map<Mat2>(r.R) = rotation(p, v);
+      r.info = static_cast<uint32_t>(g.rotations.index(rotation(p, v))) << 1 | (last ? 1u : 0u);
     }
   for (int e = 0; e < E; ++e)
     if (last_colour[e] < 0) g.closed.push_back(e);
@@ -148,9 +183,7 @@ Groups make_groups(const Problem& p) {
     g.guesses[i].store(kNoGuess, std::memory_order_relaxed);
     g.dirty[i].store(1, std::memory_order_relaxed);
   }
-  g.element_groups.resize(static_cast<size_t>(E) * c);
-  for (int e = 0; e < E; ++e)
-    for (int j = 0; j < c; ++j) g.element_groups[e * c + j] = group_of(p.elements(e, j));
+  find_neighbours(p, g, group_of);
   return g;
 }
 
@@ -181,8 +214,9 @@ struct Accumulator {
 // The planar sweep's acceptance (relax_sweep.cpp, accept_move): the ring maximum must go
 // down, and either its top level drops by more than tau = tolerance * (ring maximum) or the
 // ring improves in the area-weighted strict order with values within tau equal.
-bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, const Vec2& q, double value,
-            double current, double tolerance) {
+// The helpers of move_groups are always inlined into it (and so into its AVX2 clone).
+[[gnu::always_inline]] inline bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n,
+                                          const Vec2& q, double value, double current, double tolerance) {
   if (!(value < current * (1 - kAcceptRelative))) return false;
   const double top = std::sqrt(current), tau = tolerance * top;
   if (value < (top - tau) * (top - tau)) return true;
@@ -195,24 +229,63 @@ bool accept(const Problem& p, const Groups& g, Scratch& sc, int first, int n, co
   return ring_improves(sc.before.data(), sc.after.data(), sc.area.data(), n, tau, sc.order.data());
 }
 
-// One group's 1-ring move, updating X and D; accumulates the move and the final values of
-// the elements it is last to touch.
-void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scratch& sc, Eigen::MatrixXd& X,
-                std::vector<Mat2>& D, Accumulator& acc) {
-  const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
-  if (!g.dirty[i].exchange(0, std::memory_order_relaxed)) {
-    for (int k = 0; k < n; ++k)
-      if (g.ring[first + k].last) acc.top = std::max(acc.top, D[g.ring[first + k].element].squaredNorm());
-    return;
-  }
+// The ring's terms in the group's displacement delta (of its base): copy v sees
+// R_v^T D_T + delta g^T (the top of this file); returns the ring's current maximum, squared.
+[[gnu::always_inline]] inline double gather_terms(const Groups& g, const std::vector<Mat2>& D, int first, int n,
+                                                  Scratch& sc) {
   double current = 0;
   for (int k = 0; k < n; ++k) {
     const RingEntry& r = g.ring[first + k];
     const Mat2& Dk = D[r.element];
-    sc.terms[k] = ring_term<2>(Eigen::Map<const Mat2>(r.R).transpose() * Dk, Eigen::Map<const Vec2>(r.g), r.inv_a);
+    const Eigen::Map<const Vec2> grad(r.g);
+    if (const int rot = r.rotation(); rot == 0)
+      sc.terms[k] = ring_term<2>(Dk, grad, r.inv_a);
+    else
+      sc.terms[k] = ring_term<2>(Mat2(g.rotations.Rt[rot] * Dk), grad, r.inv_a);
     sc.current[k] = Dk.squaredNorm();
     current = std::max(current, sc.current[k]);
   }
+  return current;
+}
+
+// Moves the group by q: each copy by R_v q, each ring element's D_T by (R_v q) g^T; the
+// neighbours must look again.
+[[gnu::always_inline]] inline void apply_move(const Groups& g, int i, int first, int n, const Vec2& q,
+                                              Eigen::MatrixXd& X, std::vector<Mat2>& D) {
+  for (int m = g.member_start[i]; m < g.member_start[i + 1]; ++m) {
+    const Member& member = g.members[m];
+    const Vec2 d = member.rotation == 0 ? q : Vec2(g.rotations.R[member.rotation] * q);
+    X(member.vertex, 0) += d(0);
+    X(member.vertex, 1) += d(1);
+  }
+  for (int k = 0; k < n; ++k) {
+    const RingEntry& r = g.ring[first + k];
+    const Eigen::Map<const Vec2> grad(r.g);
+    if (const int rot = r.rotation(); rot == 0)
+      D[r.element].noalias() += q * grad.transpose();
+    else
+      D[r.element].noalias() += (g.rotations.R[rot] * q) * grad.transpose();
+  }
+  for (int k = g.neighbour_start[i]; k < g.neighbour_start[i + 1]; ++k)
+    g.dirty[g.neighbours[k]].store(1, std::memory_order_relaxed);
+}
+
+// One group's 1-ring move, updating X and D; accumulates the move and the final values of
+// the elements it is last to touch.
+[[gnu::always_inline]] inline void move_group(const Problem& p, const Groups& g, int i, double tolerance,
+                                              Scratch& sc, Eigen::MatrixXd& X, std::vector<Mat2>& D,
+                                              Accumulator& acc) {
+  const int first = g.ring_start[i], n = g.ring_start[i + 1] - first;
+  // Only this thread touches group i's flag during its colour (no neighbour has the same
+  // colour): a plain load and store, no locked exchange.
+  const bool dirty = g.dirty[i].load(std::memory_order_relaxed);
+  if (dirty) g.dirty[i].store(0, std::memory_order_relaxed);
+  if (!dirty) {
+    for (int k = 0; k < n; ++k)
+      if (g.ring[first + k].last()) acc.top = std::max(acc.top, D[g.ring[first + k].element].squaredNorm());
+    return;
+  }
+  const double current = gather_terms(g, D, first, n, sc);
   bool moved = false;
   Vec2 q = Vec2::Zero();
   if (current > 0) {
@@ -228,26 +301,25 @@ void move_group(const Problem& p, const Groups& g, int i, double tolerance, Scra
     if (sol.q.allFinite() && accept(p, g, sc, first, n, sol.q, sol.value, current, tolerance)) {
       moved = true;
       q = sol.q;
-      for (int m = g.member_start[i]; m < g.member_start[i + 1]; ++m) {
-        const Member& member = g.members[m];
-        const Vec2 d = Eigen::Map<const Mat2>(member.R) * q;
-        X(member.vertex, 0) += d(0);
-        X(member.vertex, 1) += d(1);
-      }
-      for (int k = 0; k < n; ++k) {  // the ring's deviations follow the move; the neighbours must look again
-        const RingEntry& r = g.ring[first + k];
-        D[r.element].noalias() += (Eigen::Map<const Mat2>(r.R) * q) * Eigen::Map<const Vec2>(r.g).transpose();
-        for (int c = 0; c < 3; ++c)
-          if (const int j = g.element_groups[r.element * 3 + c]; j >= 0 && j != i) g.dirty[j].store(1, std::memory_order_relaxed);
-      }
+      apply_move(g, i, first, n, q, X, D);
       acc.move = std::max(acc.move, q.norm());
     }
   }
   for (int k = 0; k < n; ++k)
-    if (g.ring[first + k].last) {
+    if (g.ring[first + k].last()) {
       const RingTerm<2>& t = sc.terms[k];
       acc.top = std::max(acc.top, moved ? t.a * (q - t.centre).squaredNorm() + t.b : sc.current[k]);
     }
+}
+
+// Groups begin..end-1 of one colour, one after the other. Compiled for AVX2 as well as the
+// baseline (socp/vector_clones.h): the VEX encoding's three operands spare the register
+// copies of this scalar-heavy code; without FMA every operation rounds as the baseline's, so
+// the maps are bitwise the same.
+STRICTMIN_VECTOR_CLONES
+void move_groups(const Problem& p, const Groups& g, int begin, int end, double tolerance, Scratch& sc,
+                 Eigen::MatrixXd& X, std::vector<Mat2>& D, Accumulator& acc) {
+  for (int i = begin; i != end; ++i) move_group(p, g, i, tolerance, sc, X, D, acc);
 }
 
 }  // namespace
@@ -286,7 +358,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
       const tbb::blocked_range<int> range(g.colour_offsets[c], g.colour_offsets[c + 1], 128);
       total = join(total, tbb::parallel_reduce(range, Accumulator{}, [&](const tbb::blocked_range<int>& r, Accumulator acc) {
         Scratch& sc = scratch.local();
-        for (int i = r.begin(); i != r.end(); ++i) move_group(p, g, i, options.accept_tolerance, sc, X, D, acc);
+        move_groups(p, g, r.begin(), r.end(), options.accept_tolerance, sc, X, D, acc);
         return acc;
       }, join));
     }
