@@ -261,11 +261,12 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
     fallback_note = "the eliminated Newton systems could not be factored after " + std::to_string(first_iterations) +
                     " iterations; solved again with the equalities' penalty";
   }
-  if (warm) {  // the next solve's warm start: this one's last dual iterate
-    warm->z = std::move(ms.final_z);
-    warm->y = std::move(ms.final_y);
-    warm->cone_size = mp.prog.cone_size();
-    warm->num_eq = mp.prog.num_eq();
+  if (warm) {  // the next solve's warm start: this one's last dual iterate, unless it failed
+    const bool sound = ms.outcome.status != socp::IpmStatus::NumericalError && !ms.stalled && ms.final_z.allFinite();
+    warm->z = sound ? std::move(ms.final_z) : Eigen::VectorXd();
+    warm->y = sound ? std::move(ms.final_y) : Eigen::VectorXd();
+    warm->cone_size = sound ? mp.prog.cone_size() : -1;
+    warm->num_eq = sound ? mp.prog.num_eq() : -1;
   }
   const BestSoFar& best = ms.best;
   result.iterations += ms.outcome.iterations;
