@@ -5,7 +5,8 @@
 //
 // Environment: STRICTMIN_DIRECT_MAX_STEPS=N (stop after N levels), STRICTMIN_DIRECT_VERBOSE_LEVEL=L
 // with STRICTMIN_LINF_VERBOSE=1|2 (the interior-point lines of level L only; every level when
-// L is unset), STRICTMIN_LINF_PENALTY=1 (the equalities by the penalty from the start).
+// L is unset), STRICTMIN_LINF_PENALTY=1 (the equalities by the penalty from the start),
+// STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings).
 // Prints the levels, the time (wall and process CPU), the status and the message.
 #include <chrono>
 #include <cstdio>
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   direct.delta_k = 1e-3;
   direct.k_min = 0.1;
   if (const int steps = env_int("STRICTMIN_DIRECT_MAX_STEPS", 0); steps > 0) direct.max_steps = steps;
+  direct.moving_rings = env_int("STRICTMIN_MOVING_RINGS", direct.moving_rings);
   const int verbose = env_int("STRICTMIN_LINF_VERBOSE", 0);
   const int verbose_level = env_int("STRICTMIN_DIRECT_VERBOSE_LEVEL", 0);
   const bool penalty = std::getenv("STRICTMIN_LINF_PENALTY") != nullptr;
