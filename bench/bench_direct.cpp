@@ -35,6 +35,12 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
     };
     r = solve_direct(p, options, linf);
     benchmark::DoNotOptimize(r.positions.data());
+    // STRICTMIN_DIRECT_DISTORTION=FILE: each element's area and distortion, one pair per line.
+    if (const char* path = std::getenv("STRICTMIN_DIRECT_DISTORTION"))
+      if (FILE* f = std::fopen(path, "w")) {
+        for (Eigen::Index e = 0; e < r.distortion.size(); ++e) std::fprintf(f, "%.17g %.17g\n", p.weights[e], r.distortion[e]);
+        std::fclose(f);
+      }
   }
   state.counters["triangles"] = p.num_elements();
   state.counters["steps"] = r.iterations;

@@ -139,3 +139,82 @@ TEST(NewtonSystems, DualEquationsHoldWithBoundedConesAtTheirBound) {
     EXPECT_LT(dv_error, 1e-8);
   }
 }
+
+// Equalities that make one free vertex equal to another (x_1 = x_0, an identity block: what a
+// seam's transitions can reduce to on direct's restricted levels) put two corners of the
+// elements between them on one unknown of the eliminated system (kkt.h, null_space.h). Their
+// cross pairs belong twice on that unknown's diagonal block; counted once, Z^T H Z was wrong
+// (and indefinite on cow's fifth level). The factor alone (no CG, no refinement on the
+// unreduced system) must give the direction of a dense solve of the unreduced system.
+TEST(NewtonSystems, EliminatedEqualitiesJoiningTwoCornersOfAnElement) {
+  ConeProgram p = grid_program();
+  // x_1 - x_0 = 0 (free vertices 0 and 1 are grid points (1, 1) and (2, 1): they share an edge).
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int r = 0; r < 2; ++r) {
+    entries.emplace_back(r, 2 + r, 1.0);
+    entries.emplace_back(r, r, -1.0);
+  }
+  p.A.resize(2, p.num_x);
+  p.A.setFromTriplets(entries.begin(), entries.end());
+  p.beq = Eigen::VectorXd::Zero(2);
+  p.finalize();
+  const int E = p.num_element_cones(), C = static_cast<int>(p.cone_size()), nv = p.num_x + 1;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  Eigen::VectorXd s(C), z(C);  // every cone well inside: the matrix is well-conditioned
+  for (int i = 0; i < E; ++i) {
+    Eigen::Vector4d u(U(rng), U(rng), U(rng), U(rng));
+    u.normalize();
+    s[5 * i] = 1.0;
+    z[5 * i] = 0.5 + 0.25 * (U(rng) + 1.0);
+    s.segment<4>(5 * i + 1) = (0.5 + 0.2 * U(rng)) * u;
+    z.segment<4>(5 * i + 1) = -0.2 * u;
+  }
+  Scaling sc;
+  ASSERT_TRUE(compute_scaling(p, s, z, sc));
+  Eigen::VectorXd q(C), rs(C), rdx(p.num_x), req = Eigen::VectorXd::Zero(2);
+  for (int r = 0; r < C; ++r) q[r] = U(rng), rs[r] = 0.1 * U(rng);
+  for (int r = 0; r < p.num_x; ++r) rdx[r] = U(rng);
+  const double rdk = U(rng);
+
+  // The dense unreduced system: B^T dzt + A~^T dy = r_d, A~ dv = -r_eq, B dv + dzt = rc.
+  const Eigen::MatrixXd M = dense(C, nv, [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out;
+    p.apply_m(v.head(p.num_x), v[p.num_x], false, out);
+    return out;
+  });
+  const Eigen::MatrixXd Winv = dense(C, C, [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out;
+    apply_scaling(p, sc, ScalingOp::WInv, v, out);
+    return out;
+  });
+  const Eigen::MatrixXd B = Winv * M;
+  Eigen::MatrixXd At = Eigen::MatrixXd::Zero(nv, 2);
+  At.topRows(p.num_x) = Eigen::MatrixXd(p.A).transpose();
+  const int N = nv + 2 + C;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+  K.block(0, nv, nv, 2) = At;
+  K.block(0, nv + 2, nv, C) = B.transpose();
+  K.block(nv, 0, 2, nv) = At.transpose();
+  K.block(nv + 2, 0, C, nv) = B;
+  K.block(nv + 2, nv + 2, C, C).setIdentity();
+  Eigen::VectorXd rhs(N);
+  rhs << rdx, rdk, -req, q + Winv * rs;
+  const Eigen::VectorXd ref = K.fullPivLu().solve(rhs);
+  ASSERT_LT((K * ref - rhs).cwiseAbs().maxCoeff(), 1e-10 * rhs.cwiseAbs().maxCoeff());
+
+  IpmSettings settings;
+  settings.refinement_steps = 0;
+  settings.unreduced_refinement = 0;
+  NormalEquations ne(p, settings);
+  ASSERT_TRUE(ne.eliminates_equalities());
+  ASSERT_TRUE(ne.factor(sc));
+  Direction d;
+  ne.solve_newton(q, rs, rdx, rdk, req, d, 0.0);
+  Eigen::VectorXd dv(nv);
+  dv << d.dx, d.dk;
+  const double dv_error = (dv - ref.head(nv)).cwiseAbs().maxCoeff() / ref.head(nv).cwiseAbs().maxCoeff();
+  std::printf("eliminated x_1 = x_0: dv error %.2e\n", dv_error);
+  EXPECT_LT(dv_error, 1e-10);
+  EXPECT_LT((d.dx.segment<2>(2) - d.dx.head<2>()).cwiseAbs().maxCoeff(), 1e-14);
+}

@@ -251,9 +251,9 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   std::string fallback_note;
   if (ms.outcome.status == socp::IpmStatus::NumericalError && normal_equations &&
       normal_equations->eliminates_equalities()) {
-    // The eliminated Newton systems lost definiteness (a seam node between elements whose
-    // scalings differ by many orders of magnitude cancels in Z^T H Z; seen on the moving
-    // regions of direct's levels): solve again with the equalities' penalty (kkt.h).
+    // The eliminated Newton systems could not be factored even with the largest
+    // regularization (not seen since an element with two corners on one unknown counts its
+    // cross pairs twice, docs/linf.md): solve again with the equalities' penalty (kkt.h).
     const int first_iterations = ms.outcome.iterations;
     normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, penalty);
     ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, nullptr);

@@ -209,6 +209,14 @@ void NormalEquations::build_pattern() {
     for (int i = begin; i < end; ++i) {
       for (int j = 0; j < c; ++j)
         if (!simple_corner(p_.dof_base[i * c + j])) simple_element[i] = 0;
+      // Two corners that are one y node (a vertex whose equalities make it equal to another,
+      // x_f = x_g) are not simple either: their cross pairs land on that node's diagonal
+      // block, where they count twice (extra_ below); one nonzero per pair would miss one.
+      for (int j1 = 0; j1 < c && elim_ && simple_element[i]; ++j1)
+        for (int j2 = 0; j2 < j1; ++j2) {
+          const int b1 = p_.dof_base[i * c + j1], b2 = p_.dof_base[i * c + j2];
+          if (b1 >= 0 && b2 >= 0 && corner_dof(b1) == corner_dof(b2)) simple_element[i] = 0;
+        }
       if (!simple_element[i]) continue;
       for (int j = 0; j < c; ++j)
         for (int r = 0; r < n; ++r) {
