@@ -9,6 +9,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/measures.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/no_flips.h"
 #include "strictmin/solvers/relax.h"
@@ -104,7 +105,36 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (!step.is_sweep()) out.lower_bound = r.lower_bound;
     Eigen::MatrixXd next = std::move(r.positions);
     if (o.no_flips && !step.is_sweep()) next = cut_back_to_no_new_flips(p, out.positions, next);
-    Eigen::VectorXd d = local_targets(p, next, o, &targets);
+    Eigen::VectorXd d;
+    if (energy && accelerate) {
+      // l2: the accelerated map against the plain step's global objective sum A ||J - R||^2
+      // for the step's targets, an upper bound of the plain map's energy that needs no local
+      // step; only when that refuses it, against the plain map's energy itself (its local step).
+      // Accepted either way, its energy is no higher than the previous map's.
+      const Eigen::VectorXd g = p.free_dofs(next);
+      const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);
+      if ((mixed - g).squaredNorm() > 0) {
+        Eigen::MatrixXd X = p.with_free_dofs(mixed);
+        Eigen::MatrixXd accelerated_targets;
+        Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
+        const bool admissible = da.allFinite() && (!o.no_flips || flips_added(p, out.positions, X) == 0);
+        const double accelerated_energy = objective(p, da, bounds, true);
+        bool take = admissible && accelerated_energy <= objective(p, field_deviation(p, next), bounds, true);
+        if (!take) {
+          d = local_targets(p, next, o, &targets);
+          take = admissible && accelerated_energy <= objective(p, d, bounds, true);
+        }
+        if (take) {
+          next = std::move(X);
+          d = std::move(da);
+          targets.swap(accelerated_targets);
+          ++accepted;
+        } else {
+          ++rejected;
+        }
+      }
+    }
+    if (d.size() == 0) d = local_targets(p, next, o, &targets);
     double current = max_of(d, bounds);
     if (extrapolated && current > previous) {
       // The extrapolated targets led higher: the plain step instead (the guarantee).
@@ -128,7 +158,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
       reason = "converged: the maximum stopped decreasing";
       break;
     }
-    if (accelerate) {
+    if (accelerate && !energy) {
       // Anderson on the free dofs; taken only when no worse than the plain step.
       const Eigen::VectorXd g = p.free_dofs(next);
       const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);

@@ -30,8 +30,10 @@ struct LocalGlobalOptions {
   // Anderson acceleration of the local-global fixed point (Peng et al. 2018) with this many
   // previous steps (0: off). An accelerated map is taken only when its objective (the maximum
   // for linf, lp, irls and direct; the energy sum A_T D_T^2 for l2) is no worse than the
-  // plain global step's, so the maximum still never increases with linf. Not used for relax
-  // sweeps.
+  // plain global step's, so the maximum still never increases with linf. For l2 the plain
+  // step's energy is first bounded by its global objective sum A_T ||J_T - R_T||^2 (no local
+  // step needed); its exact energy is computed only when that bound refuses the accelerated
+  // map. Either way the energy never increases. Not used for relax sweeps.
   int acceleration_window = 5;
   // linf global steps: early ones run to a looser gap (at most 1e-3, about a tenth of the
   // last relative change); the step that meets the stopping criterion is repeated at the
