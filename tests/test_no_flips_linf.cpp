@@ -75,6 +75,7 @@ TEST(NoFlipsLinf, NoFlipAddedWhereTheConesBind) {
               field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
               flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
               flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
+  ASSERT_GT(flips_added(p, X0, free_step.positions), 0) << "the case must make the cones bind";
   EXPECT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
   EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
   EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));

@@ -59,6 +59,24 @@ Eigen::MatrixXd dense(Eigen::Index rows, Eigen::Index cols, Op op) {
   return out;
 }
 
+// M: (x, k) -> the cones' (heads, tails), dense.
+Eigen::MatrixXd dense_m(const ConeProgram& p) {
+  return dense(p.cone_size(), p.num_x + 1, [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out;
+    p.apply_m(v.head(p.num_x), v[p.num_x], false, out);
+    return out;
+  });
+}
+
+// The scaling W (or W^{-1}) as a dense matrix.
+Eigen::MatrixXd dense_scaling(const ConeProgram& p, const Scaling& sc, ScalingOp op) {
+  return dense(p.cone_size(), p.cone_size(), [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out;
+    apply_scaling(p, sc, op, v, out);
+    return out;
+  });
+}
+
 }  // namespace
 
 TEST(NewtonSystems, DualEquationsHoldWithBoundedConesAtTheirBound) {
@@ -87,19 +105,8 @@ TEST(NewtonSystems, DualEquationsHoldWithBoundedConesAtTheirBound) {
 
   // The dense unreduced system in the scaled dual dzt = W dz:
   //   B^T dzt = r_d,  B dv + dzt = rc,  B = W^{-1} M,  rc = q + W^{-1} rs.
-  const Eigen::MatrixXd M = dense(C, nv, [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd out;
-    p.apply_m(v.head(p.num_x), v[p.num_x], false, out);
-    return out;
-  });
-  auto scaled = [&](ScalingOp op) {
-    return dense(C, C, [&](const Eigen::VectorXd& v) {
-      Eigen::VectorXd out;
-      apply_scaling(p, sc, op, v, out);
-      return out;
-    });
-  };
-  const Eigen::MatrixXd W = scaled(ScalingOp::W), Winv = scaled(ScalingOp::WInv);
+  const Eigen::MatrixXd M = dense_m(p);
+  const Eigen::MatrixXd W = dense_scaling(p, sc, ScalingOp::W), Winv = dense_scaling(p, sc, ScalingOp::WInv);
   ASSERT_GT(Winv.cwiseAbs().maxCoeff(), 1e5);  // the ill-conditioned scaling of the bound
   const Eigen::MatrixXd B = Winv * M;
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nv + C, nv + C);
@@ -178,16 +185,8 @@ TEST(NewtonSystems, EliminatedEqualitiesJoiningTwoCornersOfAnElement) {
   const double rdk = U(rng);
 
   // The dense unreduced system: B^T dzt + A~^T dy = r_d, A~ dv = -r_eq, B dv + dzt = rc.
-  const Eigen::MatrixXd M = dense(C, nv, [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd out;
-    p.apply_m(v.head(p.num_x), v[p.num_x], false, out);
-    return out;
-  });
-  const Eigen::MatrixXd Winv = dense(C, C, [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd out;
-    apply_scaling(p, sc, ScalingOp::WInv, v, out);
-    return out;
-  });
+  const Eigen::MatrixXd M = dense_m(p);
+  const Eigen::MatrixXd Winv = dense_scaling(p, sc, ScalingOp::WInv);
   const Eigen::MatrixXd B = Winv * M;
   Eigen::MatrixXd At = Eigen::MatrixXd::Zero(nv, 2);
   At.topRows(p.num_x) = Eigen::MatrixXd(p.A).transpose();

@@ -8,7 +8,7 @@ namespace strictmin {
 
 GlobalStep::GlobalStep(const Problem& p, const SolverOptions& solver, bool no_flips, bool constrained_steps,
                        bool warm_start)
-    : solver_(solver), no_flips_(constrained_steps) {
+    : solver_(solver), constrained_steps_(constrained_steps) {
   if (solver.method == Method::Relax)
     sweeper_ = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance, no_flips);
   else if (solver.method == Method::L2 && !p.has_equalities())
@@ -39,7 +39,7 @@ Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap, double 
     s.linf.gap_tolerance = gap;
     s.linf.acceptable_gap_tolerance = std::max(s.linf.acceptable_gap_tolerance, gap);
   }
-  if (s.method == Method::Linf && no_flips_ && linf_without_new_flips_applies(p, s.linf))
+  if (s.method == Method::Linf && constrained_steps_ && linf_without_new_flips_applies(p, s.linf))
     return linf_without_new_flips(p, X, s.linf.gap_tolerance);
   if (s.method != Method::Linf || !warm_) return run_method(p, s);
   if (!std::isnan(expected_change)) warm_->expected_change = expected_change;

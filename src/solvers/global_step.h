@@ -33,7 +33,7 @@ class GlobalStep {
 
  private:
   SolverOptions solver_;
-  bool no_flips_ = false;  // linf on planar maps: the step inside the orientation-preserving cones
+  bool constrained_steps_ = false;  // linf on planar maps: the step inside the orientation-preserving cones
   std::unique_ptr<L2Solver> l2_;
   std::unique_ptr<RelaxSweeper> sweeper_;
   // linf: the previous step's dual iterate, the next step's warm start (linf_warm_start.h).

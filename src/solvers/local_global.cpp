@@ -105,37 +105,15 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (!step.is_sweep()) out.lower_bound = r.lower_bound;
     Eigen::MatrixXd next = std::move(r.positions);
     if (o.no_flips && !step.is_sweep()) next = cut_back_to_no_new_flips(p, out.positions, next);
+    // The plain map's local step. l2 with acceleration may not need it (below), so it is formed
+    // on demand there; the other methods judge the step by its maximum first.
     Eigen::VectorXd d;
-    if (energy && accelerate) {
-      // l2: the accelerated map against the plain step's global objective sum A ||J - R||^2
-      // for the step's targets, an upper bound of the plain map's energy that needs no local
-      // step; only when that refuses it, against the plain map's energy itself (its local step).
-      // Accepted either way, its energy is no higher than the previous map's.
-      const Eigen::VectorXd g = p.free_dofs(next);
-      const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);
-      if ((mixed - g).squaredNorm() > 0) {
-        Eigen::MatrixXd X = p.with_free_dofs(mixed);
-        Eigen::MatrixXd accelerated_targets;
-        Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
-        const bool admissible = da.allFinite() && (!o.no_flips || flips_added(p, out.positions, X) == 0);
-        const double accelerated_energy = objective(p, da, bounds, true);
-        bool take = admissible && accelerated_energy <= objective(p, field_deviation(p, next), bounds, true);
-        if (!take) {
-          d = local_targets(p, next, o, &targets);
-          take = admissible && accelerated_energy <= objective(p, d, bounds, true);
-        }
-        if (take) {
-          next = std::move(X);
-          d = std::move(da);
-          targets.swap(accelerated_targets);
-          ++accepted;
-        } else {
-          ++rejected;
-        }
-      }
-    }
-    if (d.size() == 0) d = local_targets(p, next, o, &targets);
-    double current = max_of(d, bounds);
+    const auto plain = [&]() -> const Eigen::VectorXd& {
+      if (d.size() == 0) d = local_targets(p, next, o, &targets);
+      return d;
+    };
+    const bool plain_on_demand = energy && accelerate;  // l2: no extrapolation, no rise check
+    double current = plain_on_demand ? previous : max_of(plain(), bounds);
     if (extrapolated && current > previous) {
       // The extrapolated targets led higher: the plain step instead (the guarantee).
       p.targets = plain_targets;
@@ -158,30 +136,37 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
       reason = "converged: the maximum stopped decreasing";
       break;
     }
-    if (accelerate && !energy) {
-      // Anderson on the free dofs; taken only when no worse than the plain step.
+    if (accelerate) {
+      // Anderson on the free dofs; taken only when no worse than the plain step (its maximum;
+      // l2: its energy).
       const Eigen::VectorXd g = p.free_dofs(next);
       const Eigen::VectorXd mixed = anderson.mix(p.free_dofs(out.positions), g);
       if ((mixed - g).squaredNorm() > 0) {
-        const Eigen::MatrixXd X = p.with_free_dofs(mixed);
+        Eigen::MatrixXd X = p.with_free_dofs(mixed);
         Eigen::MatrixXd accelerated_targets;
-        const Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
-        const bool keeps_orientation = !o.no_flips || flips_added(p, out.positions, X) == 0;
+        Eigen::VectorXd da = local_targets(p, X, o, &accelerated_targets);
         // A direct level's bounded elements: no further over their bounds than the plain step
         // (the maximum above is over the free elements only).
-        const bool keeps_bounds = bound_excess(da, bounds) <= std::max(0.0, bound_excess(d, bounds));
-        if (keeps_orientation && keeps_bounds && da.allFinite() &&
-            objective(p, da, bounds, energy) <= objective(p, d, bounds, energy)) {
-          next = X;
-          d = da;
+        const bool admissible =
+            da.allFinite() && (!o.no_flips || flips_added(p, out.positions, X) == 0) &&
+            (bounds.size() == 0 || bound_excess(da, bounds) <= std::max(0.0, bound_excess(plain(), bounds)));
+        const double accelerated = objective(p, da, bounds, energy);
+        // l2: first against the plain step's global objective sum A ||J - R||^2 for the step's
+        // targets, an upper bound of its energy that needs no local step (the local step is most
+        // of an l2 step on tets); the energy still never increases.
+        bool take = admissible && energy && accelerated <= objective(p, field_deviation(p, next), bounds, true);
+        if (!take) take = admissible && accelerated <= objective(p, plain(), bounds, energy);
+        if (take) {
+          next = std::move(X);
+          d = std::move(da);
           targets.swap(accelerated_targets);
-          current = max_of(d, bounds);
           ++accepted;
         } else {
           ++rejected;
         }
       }
     }
+    current = max_of(plain(), bounds);
     last_global = r.status;
     last_global_message = r.message;
     out.positions = std::move(next);

@@ -16,12 +16,7 @@
 namespace strictmin {
 namespace {
 
-using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-
-// Appends c * (row r of M) to row out_row of the triplets.
-void add_row(const RowMatrix& M, int r, double c, int out_row, std::vector<Eigen::Triplet<double>>& t) {
-  for (RowMatrix::InnerIterator it(M, r); it; ++it) t.emplace_back(out_row, static_cast<int>(it.col()), c * it.value());
-}
+using qc::add_row;
 
 // The program. Variables: y = x / parts.map_scale (the map's free dofs in rest-pose length
 // units, as the qc programs), then k. Rows s = h - G (y, k), cone by cone.
@@ -30,7 +25,9 @@ struct StepProgram {
   int k_index = 0;
 };
 
-StepProgram build(const Problem& p, const qc::ConformalParts& parts, const Eigen::VectorXd& x0) {
+// d0: the field deviation of every element at the start (the constant elements' enter k's floor).
+StepProgram build(const Problem& p, const qc::ConformalParts& parts, const Eigen::VectorXd& x0,
+                  const Eigen::VectorXd& d0) {
   const int E = parts.count(), n = parts.num_x;
   const double L = parts.map_scale;
   StepProgram out;
@@ -79,9 +76,8 @@ StepProgram build(const Problem& p, const qc::ConformalParts& parts, const Eigen
   for (int e : parts.element) active[e] = 1;
   double constant = 0;
   bool any_constant = false;
-  const Eigen::VectorXd d = field_deviation(p, p.positions);
   for (int e = 0; e < p.num_elements(); ++e)
-    if (!active[e]) constant = std::max(constant, d[e]), any_constant = true;
+    if (!active[e]) constant = std::max(constant, d0[e]), any_constant = true;
   if (any_constant) {
     t.emplace_back(row, n, -1.0);
     h.push_back(-constant);
@@ -119,11 +115,11 @@ Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0,
   p.positions = X0;
   const qc::ConformalParts parts = qc::conformal_parts(p);
   const Eigen::VectorXd x0 = p.free_dofs(X0);
-  const StepProgram step = build(p, parts, x0);
+  const Eigen::VectorXd d0 = field_deviation(p, X0);
+  const StepProgram step = build(p, parts, x0, d0);
   // The start: X0 with k at its maximum (the solver lifts the slacks into the cones).
   Eigen::VectorXd v0(parts.num_x + 1);
   v0.head(parts.num_x) = x0 / parts.map_scale;
-  const Eigen::VectorXd d0 = field_deviation(p, X0);
   v0[step.k_index] = d0.size() ? 1.01 * d0.maxCoeff() + 1e-12 : 0.0;
   qc::SparseSocpSettings settings;
   settings.gap_tolerance = gap_tolerance;

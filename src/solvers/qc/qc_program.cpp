@@ -11,13 +11,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Appends c * (row r of M) to the triplets of row `out_row`, with the columns shifted.
-void add_row(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int r, double c, int out_row,
-             std::vector<Eigen::Triplet<double>>& t) {
-  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(M, r); it; ++it)
-    t.emplace_back(out_row, static_cast<int>(it.col()), c * it.value());
-}
-
 // Appends a cone's two tail rows, the map's 2-vector a_T (tail_a) or b_T: s = o - L M y, with
 // x = L y (ConformalParts::map_scale).
 void add_tail(const ConformalParts& parts, int i, bool tail_a, int row, std::vector<Eigen::Triplet<double>>& t,
@@ -31,6 +24,12 @@ void add_tail(const ConformalParts& parts, int i, bool tail_a, int row, std::vec
 }
 
 }  // namespace
+
+void add_row(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int r, double c, int out_row,
+             std::vector<Eigen::Triplet<double>>& t) {
+  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(M, r); it; ++it)
+    t.emplace_back(out_row, static_cast<int>(it.col()), c * it.value());
+}
 
 ConformalParts conformal_parts(const Problem& p) {
   // 1. Only 2D triangle maps: a and b are the 2D conformal / anticonformal parts.

@@ -38,6 +38,11 @@ struct ConformalParts {
   int count() const { return static_cast<int>(element.size()); }
 };
 
+// Appends c * (row r of M) to the triplets of row out_row (the cone programs' rows are built
+// from rows of ConformalParts::A and B).
+void add_row(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int r, double c, int out_row,
+             std::vector<Eigen::Triplet<double>>& t);
+
 // Throws InputError for anything but 2D maps of triangles (image_dim = domain_dim = 2) or for
 // linear equalities (seams), which these measures do not support.
 ConformalParts conformal_parts(const Problem& problem);
