@@ -6,36 +6,16 @@
 #include <emmintrin.h>
 #endif
 
+#include "solvers/socp/supernodal_layout.h"
 #include "solvers/socp/vector_clones.h"
 
 namespace strictmin {
 namespace {
 
-// Complex numbers as (re, im) pairs of doubles: std::complex's multiplication checks for
-// infinities and NaNs (a library call per product) unless the whole build relaxes that.
-struct Supernode {
-  int first;          // first column (and row) of the supernode
-  int cols;           // its width
-  int rows;           // rows of its block (the columns themselves first)
-  const int* index;   // the block's row indices
-  const double* val;  // the block, column-major, leading dimension `rows`, (re, im) pairs
-};
-
-struct SupernodalView {
-  const int *super, *pi, *px, *s;
-  const double* lx;
-  long count;
-  explicit SupernodalView(const cholmod_factor& L)
-      : super(static_cast<const int*>(L.super)),
-        pi(static_cast<const int*>(L.pi)),
-        px(static_cast<const int*>(L.px)),
-        s(static_cast<const int*>(L.s)),
-        lx(static_cast<const double*>(L.x)),
-        count(static_cast<long>(L.nsuper)) {}
-  Supernode operator[](long k) const {
-    return {super[k], super[k + 1] - super[k], pi[k + 1] - pi[k], s + pi[k], lx + 2L * px[k]};
-  }
-};
+// The loops read complex numbers as (re, im) pairs of doubles: std::complex's multiplication
+// checks for infinities and NaNs (a library call per product) unless the whole build relaxes that.
+using socp::Supernode;
+using FactorView = socp::SupernodalView<2>;  // complex entries as (re, im) pairs
 
 // Workspace (complex entries, as pairs) for the rows below one supernode, per thread.
 double* below_buffer(int size) {
@@ -53,7 +33,7 @@ bool supports_complex_supernodal_solve(const cholmod_factor& L) {
 
 STRICTMIN_VECTOR_CLONES
 void complex_supernodal_forward(const cholmod_factor& L, std::complex<double>* xc) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   double* x = reinterpret_cast<double*>(xc);
   for (long k = 0; k < view.count; ++k) {
     const Supernode sn = view[k];
@@ -94,7 +74,7 @@ void complex_supernodal_forward(const cholmod_factor& L, std::complex<double>* x
 
 STRICTMIN_VECTOR_CLONES
 void complex_supernodal_backward(const cholmod_factor& L, std::complex<double>* xc) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   double* x = reinterpret_cast<double*>(xc);
   for (long k = view.count - 1; k >= 0; --k) {
     const Supernode sn = view[k];
@@ -136,7 +116,7 @@ void complex_supernodal_backward(const cholmod_factor& L, std::complex<double>* 
 }
 
 CompactFactor compact_factor(const cholmod_factor& L) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   CompactFactor c;
   const int n = static_cast<int>(L.n);
   c.start.assign(n + 1, 0);

@@ -79,141 +79,45 @@ void update_column(const double* a, int ld, int width, int len, double* out) {
   }
 }
 
+// The complex kernels of socp::factor_left_looking (solvers/socp/supernodal_layout.h).
+struct HermitianKernels {
+  static constexpr long kBlasUpdateFlops = strictmin::kBlasUpdateFlops;
+  void update_wide(const Complex* ld, int ndrow, int m1, int m2, int ndcol, Complex* buffer) const {
+    const Complex one(1.0, 0.0), zero(0.0, 0.0);
+    zgemm_("N", "C", &m2, &m1, &ndcol, &one, ld, &ndrow, ld, &ndrow, &zero, buffer, &m2);
+  }
+  void update_column(const Complex* ld, int ndrow, int ndcol, int len, Complex* out) const {
+    strictmin::update_column(reinterpret_cast<const double*>(ld), ndrow, ndcol, len, reinterpret_cast<double*>(out));
+  }
+  bool factor_panel(Complex* a, int rows, int cols) const {
+    return cols >= kBlasPanelWidth ? factor_panel_blas(a, rows, cols, rows)
+                                   : factor_panel_small(reinterpret_cast<double*>(a), rows, cols, rows);
+  }
+};
+
 }  // namespace
 
 bool HermitianFactor::setup(cholmod_factor* L, cholmod_common* common, const HermitianEntries& entries) {
-  const std::vector<int>&row = entries.row, &col = entries.col;
-  const std::vector<char>& conjugate = entries.conjugate;
-  if (!L || !L->is_super || L->itype != CHOLMOD_INT || row.size() != col.size() || row.size() != conjugate.size())
-    return false;
+  if (!L || !L->is_super || L->itype != CHOLMOD_INT || entries.row.size() != entries.conjugate.size()) return false;
   if (L->xtype == CHOLMOD_PATTERN) cholmod_change_factor(CHOLMOD_COMPLEX, 1, 1, 1, 1, L, common);
   if (!L->x || L->xtype != CHOLMOD_COMPLEX || !L->is_ll) return false;
+  if (!entries_.locate(*L, entries.row, entries.col)) return false;
   L_ = L;
-  n_ = static_cast<int>(L->n);
-  nsuper_ = static_cast<int>(L->nsuper);
-  const int* super = static_cast<const int*>(L->super);
-  const int* pi = static_cast<const int*>(L->pi);
-  const int* px = static_cast<const int*>(L->px);
-  const int* ls = static_cast<const int*>(L->s);
-  super_of_column_.assign(n_, 0);
-  for (int s = 0; s < nsuper_; ++s)
-    for (int j = super[s]; j < super[s + 1]; ++j) super_of_column_[j] = s;
-  // Entries bucketed by supernode, then located through the supernode's row map.
-  std::vector<int> start(nsuper_ + 1, 0);
-  source_.clear();
-  for (size_t e = 0; e < row.size(); ++e) {
-    if (col[e] < 0 || col[e] >= n_ || row[e] < col[e] || row[e] >= n_) return false;
-    ++start[super_of_column_[col[e]] + 1];
-    source_.push_back(static_cast<int>(e));
-  }
-  for (int s = 0; s < nsuper_; ++s) start[s + 1] += start[s];
-  std::vector<int> order(source_.size());
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int e : source_) order[fill[super_of_column_[col[e]]]++] = e;
-  }
-  std::vector<long> target_of(row.size(), -1);
-  map_.assign(n_, -1);
-  for (int s = 0; s < nsuper_; ++s) {
-    const int nsrow = pi[s + 1] - pi[s];
-    for (int k = 0; k < nsrow; ++k) map_[ls[pi[s] + k]] = k;
-    for (int q = start[s]; q < start[s + 1]; ++q) {
-      const int e = order[q];
-      const int k = map_[row[e]];
-      if (k < 0 || ls[pi[s] + k] != row[e]) return false;  // outside the pattern
-      target_of[e] = px[s] + static_cast<long>(col[e] - super[s]) * nsrow + k;
-    }
-    for (int k = 0; k < nsrow; ++k) map_[ls[pi[s] + k]] = -1;
-  }
-  target_.resize(source_.size());
-  conjugate_.resize(source_.size());
-  for (size_t q = 0; q < source_.size(); ++q) {
-    target_[q] = target_of[source_[q]];
-    conjugate_[q] = conjugate[source_[q]];
-  }
-  head_.assign(nsuper_, -1);
-  next_.assign(nsuper_, -1);
-  position_.assign(nsuper_, 0);
-  int widest_rows = 0;
-  for (int s = 0; s < nsuper_; ++s) widest_rows = std::max(widest_rows, pi[s + 1] - pi[s]);
-  relative_.assign(widest_rows, 0);
-  update_.assign(widest_rows, Complex(0, 0));
+  conjugate_.resize(entries_.source.size());
+  for (size_t q = 0; q < entries_.source.size(); ++q) conjugate_[q] = entries.conjugate[entries_.source[q]];
+  workspace_.reserve(*L);
+  update_.assign(workspace_.relative.size(), Complex(0, 0));
   return true;
 }
 
 bool HermitianFactor::factorize(const Complex* value) {
-  cholmod_factor* L = L_;
-  const int* super = static_cast<const int*>(L->super);
-  const int* pi = static_cast<const int*>(L->pi);
-  const int* px = static_cast<const int*>(L->px);
-  const int* ls = static_cast<const int*>(L->s);
-  Complex* lx = static_cast<Complex*>(L->x);
-  std::fill(lx, lx + L->xsize, Complex(0, 0));
-  for (size_t q = 0; q < target_.size(); ++q) {
-    const Complex v = value[source_[q]];
-    lx[target_[q]] += conjugate_[q] ? std::conj(v) : v;
+  Complex* lx = static_cast<Complex*>(L_->x);
+  std::fill(lx, lx + L_->xsize, Complex(0, 0));
+  for (size_t q = 0; q < entries_.target.size(); ++q) {
+    const Complex v = value[entries_.source[q]];
+    lx[entries_.target[q]] += conjugate_[q] ? std::conj(v) : v;
   }
-  std::fill(head_.begin(), head_.end(), -1);
-  int* rel = relative_.data();
-  for (int s = 0; s < nsuper_; ++s) {
-    const int k1 = super[s], k2 = super[s + 1], nscol = k2 - k1;
-    const int psi = pi[s], nsrow = pi[s + 1] - psi;
-    Complex* ax = lx + px[s];
-    for (int k = 0; k < nsrow; ++k) map_[ls[psi + k]] = k;
-    // Updates from the supernodes whose rows meet columns k1 .. k2-1.
-    for (int d = head_[s]; d != -1;) {
-      const int dnext = next_[d];
-      const int pdi1 = position_[d], pdend = pi[d + 1], ndrow = pdend - pi[d];
-      const int ndcol = super[d + 1] - super[d];
-      int pdi2 = pdi1;
-      while (pdi2 < pdend && ls[pdi2] < k2) ++pdi2;
-      const int m1 = pdi2 - pdi1, m2 = pdend - pdi1;
-      for (int ii = 0; ii < m2; ++ii) rel[ii] = map_[ls[pdi1 + ii]];
-      const Complex* ld = lx + px[d] + (pdi1 - pi[d]);  // column c at ld + c * ndrow
-      if (static_cast<long>(m1) * m2 * ndcol >= kBlasUpdateFlops) {
-        if (buffer_.size() < static_cast<size_t>(m1) * m2) buffer_.resize(static_cast<size_t>(m1) * m2);
-        const Complex one(1.0, 0.0), zero(0.0, 0.0);
-        zgemm_("N", "C", &m2, &m1, &ndcol, &one, ld, &ndrow, ld, &ndrow, &zero, buffer_.data(), &m2);
-        for (int jj = 0; jj < m1; ++jj) {
-          Complex* target = ax + static_cast<long>(ls[pdi1 + jj] - k1) * nsrow;
-          const Complex* c = buffer_.data() + static_cast<long>(jj) * m2;
-          for (int ii = jj; ii < m2; ++ii) target[rel[ii]] -= c[ii];
-        }
-      } else {
-        // Column jj of the update, ld * ld[jj, :]^H, accumulated column by column of d
-        // (contiguous), then scattered.
-        Complex* column = update_.data();
-        for (int jj = 0; jj < m1; ++jj) {
-          Complex* target = ax + static_cast<long>(ls[pdi1 + jj] - k1) * nsrow;
-          const int len = m2 - jj;
-          update_column(reinterpret_cast<const double*>(ld + jj), ndrow, ndcol, len, reinterpret_cast<double*>(column));
-          for (int ii = 0; ii < len; ++ii) target[rel[jj + ii]] -= column[ii];
-        }
-      }
-      if (pdi2 < pdend) {  // d's next target
-        const int t = super_of_column_[ls[pdi2]];
-        position_[d] = pdi2;
-        next_[d] = head_[t];
-        head_[t] = d;
-      }
-      d = dnext;
-    }
-    for (int k = 0; k < nsrow; ++k) map_[ls[psi + k]] = -1;
-    const bool ok = nscol >= kBlasPanelWidth ? factor_panel_blas(ax, nsrow, nscol, nsrow)
-                                             : factor_panel_small(reinterpret_cast<double*>(ax), nsrow, nscol, nsrow);
-    if (!ok) {
-      L->minor = static_cast<size_t>(k1);
-      return false;
-    }
-    if (nsrow > nscol) {
-      const int t = super_of_column_[ls[psi + nscol]];
-      position_[s] = psi + nscol;
-      next_[s] = head_[t];
-      head_[t] = s;
-    }
-  }
-  L->minor = static_cast<size_t>(n_);
-  return true;
+  return socp::factor_left_looking(L_, entries_.super_of_column, workspace_, buffer_, update_, HermitianKernels{});
 }
 
 }  // namespace strictmin

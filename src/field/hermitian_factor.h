@@ -9,13 +9,13 @@
 // matrix's entries go straight into the factor's storage through a map built once, narrow
 // updates are short loops, and BLAS (zgemm, zpotrf, ztrsm) is called only for wide ones.
 //
-// Left-looking, as CHOLMOD's t_cholmod_super_numeric: for each supernode s in order, subtract
-// L_d L_d^H of every earlier supernode d whose rows meet s's columns, then factor s's diagonal
-// block and solve its off-diagonal block.
+// Algorithm: socp::factor_left_looking (solvers/socp/supernodal_layout.h) with complex kernels.
 #include <cholmod.h>
 
 #include <complex>
 #include <vector>
+
+#include "solvers/socp/supernodal_layout.h"
 
 namespace strictmin {
 
@@ -39,13 +39,10 @@ class HermitianFactor {
 
  private:
   cholmod_factor* L_ = nullptr;
-  int n_ = 0, nsuper_ = 0;
-  std::vector<int> super_of_column_;
-  std::vector<int> source_;     // the entries used (index e)
-  std::vector<long> target_;    // ... where each goes in L->x (complex entries)
-  std::vector<char> conjugate_;
+  socp::SupernodalEntryMap entries_;
+  std::vector<char> conjugate_;  // per entry used (entries_.source)
   // Workspace of one factorization.
-  std::vector<int> head_, next_, position_, map_, relative_;
+  socp::LeftLookingWorkspace workspace_;
   std::vector<std::complex<double>> buffer_, update_;
 };
 

@@ -11,13 +11,12 @@
 // storage through a map built once, updates from narrow supernodes are computed in place by
 // short loops, and BLAS (dgemm, dpotrf, dtrsm) is called only for wide ones.
 //
-// Algorithm (left-looking, as CHOLMOD's t_cholmod_super_numeric): for each supernode s in
-// order, subtract the updates L_d L_d^T of every earlier supernode d whose rows meet s's
-// columns (d waits in a linked list keyed by the next supernode it updates), then factorise
-// s's diagonal block and solve its off-diagonal block.
+// Algorithm: socp::factor_left_looking (supernodal_layout.h) with real kernels.
 #include <cholmod.h>
 
 #include <vector>
+
+#include "solvers/socp/supernodal_layout.h"
 
 namespace strictmin::socp {
 
@@ -35,12 +34,9 @@ class SupernodalFactor {
 
  private:
   cholmod_factor* L_ = nullptr;
-  int n_ = 0, nsuper_ = 0;
-  std::vector<int> super_of_column_;
-  std::vector<int> source_;   // the entries used (index e)
-  std::vector<long> target_;  // ... and where each goes in L->x
+  SupernodalEntryMap entries_;
   // Workspace of one factorisation.
-  std::vector<int> head_, next_, position_, map_, relative_;
+  LeftLookingWorkspace workspace_;
   std::vector<double> buffer_, update_;
 };
 

@@ -2,34 +2,13 @@
 
 #include <vector>
 
+#include "solvers/socp/supernodal_layout.h"
 #include "solvers/socp/vector_clones.h"
 
 namespace strictmin::socp {
 namespace {
 
-struct Supernode {
-  int first;          // first column (and row) of the supernode
-  int cols;           // its width
-  int rows;           // rows of its block (the columns themselves first)
-  const int* index;   // the block's row indices
-  const double* val;  // the block, column-major, leading dimension `rows`
-};
-
-struct SupernodalView {
-  const int *super, *pi, *px, *s;
-  const double* lx;
-  long count;
-  explicit SupernodalView(const cholmod_factor& L)
-      : super(static_cast<const int*>(L.super)),
-        pi(static_cast<const int*>(L.pi)),
-        px(static_cast<const int*>(L.px)),
-        s(static_cast<const int*>(L.s)),
-        lx(static_cast<const double*>(L.x)),
-        count(static_cast<long>(L.nsuper)) {}
-  Supernode operator[](long k) const {
-    return {super[k], super[k + 1] - super[k], pi[k + 1] - pi[k], s + pi[k], lx + px[k]};
-  }
-};
+using FactorView = SupernodalView<1>;  // real entries
 
 // Workspace for the rows below one supernode, kept per thread (the halves of SplitCholesky
 // substitute on two threads at once).
@@ -47,7 +26,7 @@ bool supports_supernodal_solve(const cholmod_factor& L) {
 
 STRICTMIN_VECTOR_CLONES
 void supernodal_forward(const cholmod_factor& L, double* x) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   for (long k = 0; k < view.count; ++k) {
     const Supernode sn = view[k];
     double* xs = x + sn.first;
@@ -80,7 +59,7 @@ void supernodal_forward(const cholmod_factor& L, double* x) {
 
 STRICTMIN_VECTOR_CLONES
 void supernodal_backward(const cholmod_factor& L, double* x) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   for (long k = view.count - 1; k >= 0; --k) {
     const Supernode sn = view[k];
     double* xs = x + sn.first;
@@ -116,7 +95,7 @@ namespace strictmin::socp {
 
 STRICTMIN_VECTOR_CLONES
 void supernodal_forward2(const cholmod_factor& L, double* x) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   for (long k = 0; k < view.count; ++k) {
     const Supernode sn = view[k];
     double* xs = x + 2 * static_cast<long>(sn.first);
@@ -153,7 +132,7 @@ void supernodal_forward2(const cholmod_factor& L, double* x) {
 
 STRICTMIN_VECTOR_CLONES
 void supernodal_backward2(const cholmod_factor& L, double* x) {
-  const SupernodalView view(L);
+  const FactorView view(L);
   for (long k = view.count - 1; k >= 0; --k) {
     const Supernode sn = view[k];
     double* xs = x + 2 * static_cast<long>(sn.first);
