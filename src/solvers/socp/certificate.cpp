@@ -81,6 +81,7 @@ Eigen::VectorXd WeightedLeastSquares::minimizer() const {
     wh.segment(static_cast<Eigen::Index>(i) * tt, tt) = p_.weight[i] * p_.h.segment(static_cast<Eigen::Index>(i) * tt, tt);
   Eigen::VectorXd rhs;
   p_.apply_gt(wh.data(), tt, 0, rhs);
+  if (with_eq_) rhs.noalias() += p_.A.transpose() * p_.beq;  // + ||A x - b||^2
   return solve(rhs);
 }
 

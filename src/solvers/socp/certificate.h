@@ -34,7 +34,7 @@ class WeightedLeastSquares {
   // (G^T W G)^{-1} r, or (G^T W G + A^T A)^{-1} r with_equalities.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
   // argmin_x sum_i w_i ||G_i x - h_i||^2 (the L2 map, without the equalities; with_equalities
-  // plus ||A x||^2).
+  // plus ||A x - b||^2).
   Eigen::VectorXd minimizer() const;
 
  private:
