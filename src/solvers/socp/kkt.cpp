@@ -266,10 +266,16 @@ void NormalEquations::build_pattern() {
             }
         }
     }
-    // In the matrix's order: the gather then writes each nonzero once, in sequence.
-    std::sort(extra_.begin(), extra_.end(), [](const ExtraSlot& a, const ExtraSlot& b) {
-      return a.target < b.target || (a.target == b.target && a.slot < b.slot);
-    });
+    // In the matrix's order: the gather then writes each nonzero once, in sequence. The
+    // entries were made in ascending slots, so a stable counting sort by target orders them
+    // by (target, slot) in one pass (horse: 1.5M entries, a comparison sort took 1.3% of
+    // the whole solve).
+    std::vector<int> start(static_cast<size_t>(matrix_.nonZeros()) + 1, 0);
+    for (const ExtraSlot& x : extra_) ++start[x.target + 1];
+    for (size_t z = 1; z < start.size(); ++z) start[z] += start[z - 1];
+    std::vector<ExtraSlot> sorted(extra_.size());
+    for (const ExtraSlot& x : extra_) sorted[start[x.target]++] = x;
+    extra_.swap(sorted);
   }
   std::vector<int> count(nnz + 1, 0);
   for (int target : slot_target_)
