@@ -21,6 +21,7 @@
 #include "linf_phase1.h"
 #include "linf_program.h"
 #include "linf_warm_start.h"
+#include "solvers/linf_relaxed_equalities.h"
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
@@ -164,7 +165,11 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
                      " has every vertex fixed and exceeds its bound k_T by " + format(cls.constant_excess);
     return finish(p.positions);
   }
-  const std::vector<int> loose = unanchored_components(p);
+  // Parts without a fixed vertex may still be held by the equalities (an active-set
+  // relaxation's, linf_relaxed_equalities.h); the least squares then includes them.
+  const std::vector<int> unanchored = unanchored_components(p);
+  const bool held_by_equalities = !unanchored.empty() && p.has_equalities();
+  const std::vector<int> loose = held_by_equalities ? free_translations(p) : unanchored;
   if (!loose.empty()) {
     result.status = SolveStatus::NumericalError;
     result.message = "the map is not determined: the part of the mesh containing vertex " + std::to_string(loose.front()) +
@@ -203,7 +208,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
       if (active) g.wait();
     }
   } join_on_exit{analysis, prepare};
-  socp::WeightedLeastSquares ls(mp.prog);
+  socp::WeightedLeastSquares ls(mp.prog, held_by_equalities);
   if (!ls.ok()) {
     result.status = SolveStatus::NumericalError;
     result.message = "the L2 system is not positive definite (degenerate elements?)";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "solvers/linf_relaxed_equalities.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"
 #include "strictmin/problem/subproblem.h"
@@ -39,6 +40,21 @@ Subproblem restricted_problem(const Problem& p, const std::vector<int>& elements
   }
   for (int v : held) movable[v] = 0;
   Problem q = p;
+  if (!hold_rim && p.has_equalities()) {
+    // The equalities projected onto the restriction's vertices, with the translations they
+    // allow held (linf_relaxed_equalities.h); failing that, the rows through a vertex outside
+    // or through a part held are dropped.
+    std::vector<char> inside(V, 0);
+    for (int v = 0; v < V; ++v) inside[v] = parts.part[v] >= 0;
+    RelaxedEqualities relaxed = relaxed_equalities(p, inside, parts, anchor);
+    if (relaxed.ok) {
+      for (int v = 0; v < V; ++v) movable[v] = parts.part[v] >= 0 && !anchor[v];
+      for (int v : relaxed.held) movable[v] = 0;
+      q.eq_matrix = std::move(relaxed.A);
+      q.eq_rhs = std::move(relaxed.b);
+      return restrict_to_movable(q, movable, X, &chosen);
+    }
+  }
   if (!hold_rim && p.has_equalities()) {
     const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
     std::vector<Eigen::Triplet<double>> kept;

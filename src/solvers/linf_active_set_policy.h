@@ -43,6 +43,10 @@ class ActiveSetPolicy {
   // kMapGrowth times as many.
   static constexpr int kMapRings = 2;
   static constexpr double kMapGrowth = 3.0;
+  // With equalities (the seamless problems), whose elements at the maximum can be a handful
+  // (igea_100k: 6), the rings may reach kMapMinElements: a ring around 6 elements is already
+  // 3 times as many, and without it every vertex of theirs is held and the map moves nothing.
+  static constexpr size_t kMapMinElements = 300;
   // At most max(kCapMin, E / kCapDivisor) elements in a restriction (the reach shrinks tenfold
   // until they fit).
   static constexpr size_t kCapMin = 1000;

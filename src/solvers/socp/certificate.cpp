@@ -6,7 +6,12 @@
 
 namespace strictmin::socp {
 
-WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p) : p_(p), cholesky_(/*amd_only=*/true) {
+WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p, bool with_equalities)
+    : p_(p), cholesky_(/*amd_only=*/true), with_eq_(with_equalities && p.num_eq() > 0 && p.num_x > 0) {
+  if (with_eq_) {
+    factor_with_equalities();
+    return;
+  }
   const int n = p.n, m = p.m, c = p.corners(), F = p.num_x / n;
   if (F == 0) return;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -31,9 +36,38 @@ WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p) : p_(p), choles
   ok_ = cholesky_.factorize(K);
 }
 
+void WeightedLeastSquares::factor_with_equalities() {
+  // K (x) I_n + A^T A on every dof, lower triangle.
+  const int n = p_.n, m = p_.m, c = p_.corners();
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int i = 0; i < p_.num_element_cones(); ++i) {
+    const double* g = p_.grad.data() + static_cast<size_t>(i) * c * m;
+    for (int j1 = 0; j1 < c; ++j1) {
+      const int b1 = p_.dof_base[i * c + j1];
+      if (b1 < 0) continue;
+      for (int j2 = 0; j2 < c; ++j2) {
+        const int b2 = p_.dof_base[i * c + j2];
+        if (b2 < 0 || b2 > b1) continue;
+        double gram = 0;
+        for (int col = 0; col < m; ++col) gram += g[j1 * m + col] * g[j2 * m + col];
+        for (int d = 0; d < n; ++d) triplets.emplace_back(b1 + d, b2 + d, p_.weight[i] * gram);
+      }
+    }
+  }
+  const Eigen::SparseMatrix<double> ata = Eigen::SparseMatrix<double>(p_.A.transpose() * p_.A);
+  for (int col = 0; col < ata.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it)
+      if (it.row() >= it.col()) triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+  Eigen::SparseMatrix<double> K(p_.num_x, p_.num_x);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  cholesky_.analyze(K);
+  ok_ = cholesky_.factorize(K);
+}
+
 Eigen::VectorXd WeightedLeastSquares::solve(const Eigen::VectorXd& r) const {
   const int n = p_.n, F = p_.num_x / n;
   if (F == 0) return Eigen::VectorXd(0);
+  if (with_eq_) return cholesky_.solve(r);
   using RowMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::MatrixXd B = Eigen::Map<const RowMat>(r.data(), F, n);
   const RowMat X = cholesky_.solve(B);
@@ -47,6 +81,7 @@ Eigen::VectorXd WeightedLeastSquares::minimizer() const {
     wh.segment(static_cast<Eigen::Index>(i) * tt, tt) = p_.weight[i] * p_.h.segment(static_cast<Eigen::Index>(i) * tt, tt);
   Eigen::VectorXd rhs;
   p_.apply_gt(wh.data(), tt, 0, rhs);
+  if (with_eq_) rhs.noalias() += p_.A.transpose() * p_.beq;  // + ||A x - b||^2
   return solve(rhs);
 }
 
@@ -59,11 +94,12 @@ double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& l
   Eigen::VectorXd r;
   p.apply_gt(z.data(), tt + 1, 1, r);
   if (p.num_eq() > 0) r.noalias() += p.A.transpose() * y;
-  Eigen::VectorXd delta;
+  Eigen::VectorXd delta, y_corrected = y;
   if (p.num_x > 0) {
     const Eigen::VectorXd u = ls.solve(r);
     p.apply_g(u, delta);
     for (int i = 0; i < E; ++i) delta.segment(static_cast<Eigen::Index>(i) * tt, tt) *= -p.weight[i];
+    if (ls.with_equalities()) y_corrected.noalias() -= p.A * u;
   } else {
     delta.setZero(static_cast<Eigen::Index>(E) * tt);
   }
@@ -85,7 +121,7 @@ double certified_lower_bound(const ConeProgram& p, const WeightedLeastSquares& l
     objective += -p.head_b[E] * head;
     normalizer += p.head_a[E] * head;
   }
-  if (p.num_eq() > 0) objective += p.beq.dot(y);
+  if (p.num_eq() > 0) objective += p.beq.dot(y_corrected);
   if (!(normalizer > 0) || !std::isfinite(objective)) return minus_inf;
   if (multipliers) *multipliers /= normalizer;
   return p.c_k * objective / normalizer;

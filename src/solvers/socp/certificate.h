@@ -13,6 +13,12 @@
 // area-weighted L2 matrix of the free vertices (the cotangent Laplacian for triangles):
 // factorised once (in AMD order: no METIS, so that it may be built while another thread
 // orders the normal equations), solved per image coordinate.
+//
+// A program whose parts are held by its equalities only (an active-set relaxation of a
+// seamless problem, linf_relaxed_equalities.h) has a singular G^T W G: its parts' translations.
+// There (with_equalities) the matrix is K (x) I_n + A^T A, and the correction
+// u = (G^T W G + A^T A)^{-1} r moves the tails by delta = -W G u and the equalities'
+// multipliers by -A u, which again makes G^T (z_tails + delta) + A^T y = 0 exactly.
 #include <Eigen/Core>
 
 #include "solvers/socp/cone_program.h"
@@ -22,17 +28,22 @@ namespace strictmin::socp {
 
 class WeightedLeastSquares {
  public:
-  explicit WeightedLeastSquares(const ConeProgram& p);
+  explicit WeightedLeastSquares(const ConeProgram& p, bool with_equalities = false);
   bool ok() const { return ok_; }
-  // (G^T W G)^{-1} r.
+  bool with_equalities() const { return with_eq_; }
+  // (G^T W G)^{-1} r, or (G^T W G + A^T A)^{-1} r with_equalities.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
-  // argmin_x sum_i w_i ||G_i x - h_i||^2 (the L2 map, without the equalities).
+  // argmin_x sum_i w_i ||G_i x - h_i||^2 (the L2 map, without the equalities; with_equalities
+  // plus ||A x - b||^2).
   Eigen::VectorXd minimizer() const;
 
  private:
+  void factor_with_equalities();
+
   const ConeProgram& p_;
   SparseCholesky cholesky_;
   bool ok_ = true;
+  bool with_eq_ = false;
 };
 
 // Certified lower bound on the optimal k of `p` (c_k = 1, no quadratic objective) from any

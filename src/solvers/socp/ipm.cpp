@@ -157,15 +157,15 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
       out.message = "the normal equations could not be factorised (not positive definite)";
       return out;
     }
-    auto direction = [&](const Eigen::VectorXd& q, Direction& d, double tolerance) {
+    auto direction = [&](const Eigen::VectorXd& q, Direction& d, double tolerance, bool need_dy) {
       const auto ts = clock();
-      kkt.solve_newton(q, res.rs, res.rdx, res.rdk, res.req, d, tolerance);
+      kkt.solve_newton(q, res.rs, res.rdx, res.rdk, res.req, d, tolerance, need_dy);
       out.solve_s += since(ts);
     };
     // Predictor (affine scaling direction).
     Direction aff;
     qa = -sc.lambda;
-    direction(qa, aff, settings.predictor_tolerance);
+    direction(qa, aff, settings.predictor_tolerance, false);  // only its cone parts are used
     if (kkt.bordering_failed()) {
       out.status = IpmStatus::NumericalError;
       out.message = "the normal equations could not be factorised (not positive definite)";
@@ -181,7 +181,7 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
     rc = -ll - corr + cone_identity(p, sigma * mu);
     cone_arrow_solve(p, sc.lambda, rc, qc);
     Direction dir;
-    direction(qc, dir, 0.0);
+    direction(qc, dir, 0.0, true);
     auto max_step_of = [&](const Direction& d) {
       return std::min(cone_max_step(p, sc.lambda, d.dst), cone_max_step(p, sc.lambda, d.dzt));
     };

@@ -77,8 +77,11 @@ class NormalEquations {
   // An empty rs stands for r_s = 0.
   // tolerance: relative residual the refinement aims at (<= 0: settings.refinement_tolerance);
   // the predictor and the centrality correctors need far less than the step's direction.
+  // need_dy false (the predictor, which only sets sigma and the second-order term): d.dy is
+  // left zero and, with eliminated equalities, an equality residual at round-off is not
+  // corrected, which spares two products through the cones.
   void solve_newton(const Eigen::VectorXd& q, const Eigen::VectorXd& rs, const Eigen::VectorXd& rdx, double rdk,
-                    const Eigen::VectorXd& req, Direction& d, double tolerance = 0);
+                    const Eigen::VectorXd& req, Direction& d, double tolerance = 0, bool need_dy = true);
 
   // True when the last factorisation turned out unusable at its first solve (the bordering's
   // Schur complement not positive: see finish_bordering); the directions are then not finite.
@@ -107,7 +110,7 @@ class NormalEquations {
   // dz null: the caller forms it (with the direction's other cone parts, in one pass).
   void solve_unreduced(const Eigen::VectorXd& rdx, double rdk, const Eigen::VectorXd& rc, const Eigen::VectorXd& re,
                        Eigen::VectorXd& dx, double& dk, Eigen::VectorXd& w, Eigen::VectorXd* dz, double threshold,
-                       int& steps) const;
+                       int& steps, bool need_w = true) const;
 
   // (ox, ok) = (H + P) (dx, dk) on the program's dofs.
   void apply_full(const Eigen::VectorXd& dx, double dk, Eigen::VectorXd& ox, double& ok) const;
