@@ -33,7 +33,8 @@ namespace strictmin::socp {
 // the k part of the dual residual vanishes (or from dual_scale without k), y = 0.
 // bounded_margin > 0: the element cones with a constant head (fixed bounds k_T) instead get
 // s_0 = max(k_T, ||tail||) + bounded_margin, a start that meets (or nearly meets) their bound;
-// z = mu0 s^{-1} then starts their multipliers large (docs/strict.md, "The start of a level").
+// z = mu0 s^{-1} then starts their multipliers large (docs/strict.md, "The start of a level";
+// used on the programs with equalities, linf_main_solve.cpp).
 void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, double margin, double dual_scale,
                 IpmState& st, double bounded_margin = 0.0);
 
