@@ -51,10 +51,13 @@ double weighted_det_floor(const ConeProgram& p, const Eigen::VectorXd& s, double
   return std::isfinite(det_min) ? det_min * p.weight.maxCoeff() : 0.0;
 }
 
+// An element cone with a constant head (a fixed bound k_T, no k).
+bool is_bounded(const ConeProgram& p, int i) { return i < p.num_element_cones() && p.head_a[i] == 0; }
+
 }  // namespace
 
 void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, double margin, double dual_scale,
-                IpmState& st) {
+                IpmState& st, double bounded_margin) {
   st.x = x0;
   st.k = p.has_k ? k0 : 0.0;
   p.apply_m(st.x, st.k, true, st.s);
@@ -66,9 +69,13 @@ void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, doub
     const int d = p.cone_dim(i);
     double* s = st.s.data() + o;
     const double tn = tail_norm(s, d);
-    if (s[0] - tn < margin) s[0] = tn + margin;
-    if (det_floor > 0 && i < p.num_element_cones())
-      s[0] = std::max(s[0], std::sqrt(tn * tn + det_floor / p.weight[i]));
+    if (bounded_margin > 0 && is_bounded(p, i)) {
+      s[0] = std::max(s[0], tn) + bounded_margin;  // ipm.h
+    } else {
+      if (s[0] - tn < margin) s[0] = tn + margin;
+      if (det_floor > 0 && i < p.num_element_cones())
+        s[0] = std::max(s[0], std::sqrt(tn * tn + det_floor / p.weight[i]));
+    }
     const double det = soc_det(s, d);
     double* z = st.z.data() + o;
     z[0] = s[0] / det;

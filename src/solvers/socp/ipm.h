@@ -31,8 +31,12 @@ namespace strictmin::socp {
 // value: ipm.cpp),
 // z = mu0 s^{-1} (so that s o z = mu0 e: a perfectly centred start) with mu0 chosen so that
 // the k part of the dual residual vanishes (or from dual_scale without k), y = 0.
+// bounded_margin > 0: the element cones with a constant head (fixed bounds k_T) instead get
+// s_0 = max(k_T, ||tail||) + bounded_margin, a start that meets (or nearly meets) their bound;
+// z = mu0 s^{-1} then starts their multipliers large (docs/strict.md, "The start of a level";
+// used on the programs with equalities, linf_main_solve.cpp).
 void initialize(const ConeProgram& p, const Eigen::VectorXd& x0, double k0, double margin, double dual_scale,
-                IpmState& st);
+                IpmState& st, double bounded_margin = 0.0);
 
 // Returns true to stop (the iterate satisfies the caller).
 using IpmMonitor = std::function<bool(const IpmState&, const Residuals&, const IpmIteration&)>;
