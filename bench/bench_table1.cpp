@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -146,18 +147,39 @@ void print_table(const nlohmann::json& rows) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+constexpr const char* kUsage =
+    "usage: bench_table1 [--out FILE.json] [--direct-max-faces N] [--sweeps N] [--only-l2] [MESH.obj ...]\n"
+    "       bench_table1 --merge RUN.json ...   (print earlier runs' rows as one table)\n"
+    "Without meshes: every .obj in the shared data's closed/ folder (skipped when absent).\n";
+
+int parse_count(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  int value = -1;
+  try {
+    value = std::stoi(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != text.size() || value < 0) throw std::invalid_argument(flag + " " + text + ": not a count (an integer >= 0)");
+  return value;
+}
+
+int run(int argc, char** argv) {
   std::string out = "table1.json";
   int direct_max_faces = 10000, sweeps = 50;
   std::vector<fs::path> meshes;
   bool merge = false, only_l2 = false;  // the arguments are JSON files of earlier runs: print their rows as one table
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
     if (a == "--out" && i + 1 < argc) out = argv[++i];
-    else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = std::stoi(argv[++i]);
-    else if (a == "--sweeps" && i + 1 < argc) sweeps = std::stoi(argv[++i]);
+    else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = parse_count(a, argv[++i]);
+    else if (a == "--sweeps" && i + 1 < argc) sweeps = parse_count(a, argv[++i]);
     else if (a == "--merge") merge = true;
     else if (a == "--only-l2") only_l2 = true;
+    else if (a.rfind("--", 0) == 0) throw std::invalid_argument(a + ": unknown option or missing value\n" + kUsage);
     else meshes.emplace_back(a);
   }
   if (merge) {
@@ -186,4 +208,13 @@ int main(int argc, char** argv) {
   if (only_l2) print_l2_table(rows);
   else print_table(rows);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // bad input (a mesh that does not read, a bad number)
+    std::fprintf(stderr, "bench_table1: error: %s\n", e.what());
+    return 1;
+  }
 }
