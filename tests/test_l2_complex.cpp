@@ -11,6 +11,7 @@
 #include <random>
 
 #include "field/hermitian_cholesky.h"
+#include "test_meshes.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/mesh/polycube.h"
@@ -23,12 +24,6 @@ using namespace strictmin;
 using Complex = std::complex<double>;
 
 namespace {
-
-Problem seamless(const Mesh& mesh) {
-  GParamOptions o;
-  o.solver.method = Method::L2;
-  return global_parametrize(mesh, o, "test mesh").problem;
-}
 
 Eigen::VectorXd dofs(const Eigen::MatrixXd& X) {
   Eigen::VectorXd q(X.size());
@@ -64,7 +59,7 @@ void expect_same_minimizer(const Problem& p, const std::string& name) {
 // elimination's (each complex node two real ones); every coefficient is a multiple of 1/4 in
 // both parts (quarter turns, and halves at singular vertices).
 TEST(ComplexEqualityBasis, EliminatesSeamsExactly) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   const auto b = complex_equality_basis(p);
   ASSERT_TRUE(b.has_value());
   EXPECT_EQ(2 * b->num_nodes, equality_basis(p).num_independent());
@@ -88,13 +83,13 @@ TEST(ComplexEqualityBasis, EliminatesSeamsExactly) {
 }
 
 TEST(ComplexL2, SameMinimizerAsTheRealFormOnTheBulgedFrame) {
-  expect_same_minimizer(seamless(make_bulged_frame_surface(4, 7)), "bulged frame");
+  expect_same_minimizer(test_support::seamless_problem(make_bulged_frame_surface(4, 7)), "bulged frame");
 }
 
 TEST(ComplexL2, SameMinimizerAsTheRealFormOnCow) {
   const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / "cow.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
-  expect_same_minimizer(seamless(read_mesh(file.string())), "cow");
+  expect_same_minimizer(test_support::seamless_problem(read_mesh(file.string())), "cow");
 }
 
 // An equality on u alone (not a rotation-scaling block) and one with a right-hand side are

@@ -13,6 +13,7 @@
 
 #include "solvers/linf_active_set.h"
 #include "solvers/linf_relaxed_equalities.h"
+#include "test_meshes.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/problem/parts.h"
@@ -22,12 +23,6 @@
 using namespace strictmin;
 
 namespace {
-
-Problem seamless(const Mesh& mesh) {
-  GParamOptions o;
-  o.solver.method = Method::L2;
-  return global_parametrize(mesh, o, "test mesh").problem;
-}
 
 std::vector<char> inside_of(const Problem& p, const std::vector<int>& elements) {
   std::vector<char> inside(p.num_vertices, 0);
@@ -65,7 +60,7 @@ int rank_of(const Eigen::MatrixXd& m) {
 // {x_in : A_in x_in + A_out x_out = 0 for some x_out} against the projected rows: they vanish
 // on every null vector of A, and the projection's dimension is the dofs kept minus their rank.
 TEST(RelaxedSeams, ProjectionIsExactOnRandomRestrictions) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   ASSERT_TRUE(p.has_equalities());
   const int n = p.image_dim;
   // Every x with A x = 0 and the fixed vertices still.
@@ -117,7 +112,7 @@ TEST(RelaxedSeams, ProjectionIsExactOnRandomRestrictions) {
 
 // The whole seamless problem is held by its one fixed vertex: no free translation.
 TEST(RelaxedSeams, WholeProblemHasNoFreeTranslation) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   EXPECT_TRUE(free_translations(p).empty());
 }
 
@@ -125,7 +120,7 @@ TEST(RelaxedSeams, WholeProblemHasNoFreeTranslation) {
 // elements near the maximum, where dropping the seams through the other vertices used to
 // certify far less.
 TEST(RelaxedSeams, ActiveSetBoundIsValidAndUseful) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   LinfOptions o;
   o.active_set_bounds = false;
   const Result full = solve_linf(p, o);
@@ -149,7 +144,7 @@ TEST(RelaxedSeams, ActiveSetBoundIsValidAndUseful) {
 TEST(RelaxedSeams, ActiveSetBoundOnCow) {
   const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / "cow.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent";
-  const Problem p = seamless(read_mesh(file.string()));
+  const Problem p = test_support::seamless_problem(read_mesh(file.string()));
   LinfOptions o;
   const Result full = solve_linf(p, o);
   ASSERT_EQ(full.status, SolveStatus::Solved) << full.message;

@@ -9,6 +9,7 @@
 
 #include "solvers/socp/fd_program.h"
 #include "solvers/socp/null_space.h"
+#include "test_meshes.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/solvers/linf.h"
@@ -17,12 +18,6 @@
 using namespace strictmin;
 
 namespace {
-
-Problem seamless(const Mesh& mesh) {
-  GParamOptions o;
-  o.solver.method = Method::L2;
-  return global_parametrize(mesh, o, "test mesh").problem;
-}
 
 double seam_violation(const Problem& p, const Eigen::MatrixXd& X) {
   Eigen::VectorXd q(X.size());
@@ -69,7 +64,7 @@ void expect_same_optimum(const Problem& p, const std::string& name) {
 // columns (the seams' rows are independent), and the blocks are exact: quarter turns, and
 // at singular vertices (I - R)^-1 of a quarter turn's, so every entry is a multiple of 1/4.
 TEST(SeamNullSpace, SpansTheSeamsNullSpace) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   const socp::ConeProgram prog = main_program(p);
   ASSERT_GT(prog.num_eq(), 0);
   const socp::BlockNullSpace z = socp::block_null_space(prog);
@@ -91,7 +86,7 @@ TEST(SeamNullSpace, SpansTheSeamsNullSpace) {
 
 // Equalities not in vertex blocks (a single row) are left to the penalty.
 TEST(SeamNullSpace, RefusesEqualitiesNotInBlocks) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   socp::ConeProgram prog = main_program(p);
   prog.A = Eigen::SparseMatrix<double, Eigen::RowMajor>(prog.A.topRows(1));
   prog.beq = prog.beq.head(1);
@@ -99,19 +94,19 @@ TEST(SeamNullSpace, RefusesEqualitiesNotInBlocks) {
 }
 
 TEST(SeamElimination, SameOptimumAsThePenaltyOnTheBulgedFrame) {
-  expect_same_optimum(seamless(make_bulged_frame_surface(4, 7)), "bulged frame");
+  expect_same_optimum(test_support::seamless_problem(make_bulged_frame_surface(4, 7)), "bulged frame");
 }
 
 TEST(SeamElimination, SameOptimumAsThePenaltyOnCow) {
   const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / "cow.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent";
-  expect_same_optimum(seamless(read_mesh(file.string())), "cow");
+  expect_same_optimum(test_support::seamless_problem(read_mesh(file.string())), "cow");
 }
 
 // The least-L2 map among the L-infinity optima (a quadratic objective: the eliminated
 // system carries Z^T P Z) agrees with the penalty's.
 TEST(SeamElimination, LeastL2AmongOptimaAsThePenalty) {
-  const Problem p = seamless(make_bulged_frame_surface(4, 7));
+  const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   LinfOptions eliminated, penalty;
   eliminated.minimize_l2_among_optimal = penalty.minimize_l2_among_optimal = true;
   penalty.eliminate_equalities = false;

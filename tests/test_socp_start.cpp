@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grid_cone_program.h"
 #include "solvers/socp/cone_program.h"
 #include "solvers/socp/ipm.h"
 #include "solvers/socp/soc.h"
@@ -16,45 +17,6 @@ using namespace strictmin::socp;
 
 namespace {
 
-// A 4 x 4 grid of vertices on [0, 3]^2 (its 4 inner vertices free), 18 triangles: the first
-// 9 with head k, the others bounded, their bound bound(i).
-template <class Bound>
-ConeProgram grid_program(Bound bound) {
-  ConeProgram p;
-  p.n = p.m = 2;
-  p.num_x = 8;
-  auto free_index = [](int i, int j) { return (i >= 1 && i <= 2 && j >= 1 && j <= 2) ? (j - 1) * 2 + (i - 1) : -1; };
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const int corners[2][3][2] = {{{i, j}, {i + 1, j}, {i + 1, j + 1}}, {{i, j}, {i + 1, j + 1}, {i, j + 1}}};
-      for (const auto& tri : corners) {
-        p.element.push_back(static_cast<int>(p.element.size()));
-        const Eigen::Vector2d p0(tri[0][0], tri[0][1]), p1(tri[1][0], tri[1][1]), p2(tri[2][0], tri[2][1]);
-        Eigen::Matrix2d d;
-        d << p1 - p0, p2 - p0;
-        const Eigen::Matrix2d inv = d.inverse();  // rows: gradients of corners 1 and 2
-        const Eigen::Vector2d g1 = inv.row(0).transpose(), g2 = inv.row(1).transpose(), g0 = -g1 - g2;
-        for (const Eigen::Vector2d& g : {g0, g1, g2}) p.grad.insert(p.grad.end(), {g[0], g[1]});
-        for (const auto& c : tri) {
-          const int f = free_index(c[0], c[1]);
-          p.dof_base.push_back(f < 0 ? -1 : 2 * f);
-        }
-      }
-    }
-  const int E = static_cast<int>(p.element.size());
-  p.h = Eigen::VectorXd::Zero(E * 4);  // target 0: the tails are the Jacobians
-  p.weight = Eigen::VectorXd::Constant(E, 0.5);
-  p.head_a = Eigen::VectorXd::Zero(E);
-  p.head_b = Eigen::VectorXd::Zero(E);
-  for (int i = 0; i < E; ++i) {
-    if (i < E / 2)
-      p.head_a[i] = 1.0;
-    else
-      p.head_b[i] = bound(i);
-  }
-  p.finalize();
-  return p;
-}
 
 // The inner vertices moved off the grid, so that the Jacobians differ between elements.
 Eigen::VectorXd inner_positions() {
@@ -97,10 +59,10 @@ TEST(IpmStart, BoundedConesStartJustAboveTheirBound) {
   const Eigen::VectorXd x0 = inner_positions();
   // Every bounded element's bound is its Jacobian's norm at x0, plus 1e-6 (met) for even i
   // and minus 1e-3 (missed) for odd i.
-  ConeProgram probe = grid_program([](int) { return 1.0; });
+  ConeProgram probe = grid_cone_program([](int) { return 1.0; });
   Eigen::VectorXd m0;
   probe.apply_m(x0, 0.0, true, m0);
-  const ConeProgram p = grid_program([&](int i) {
+  const ConeProgram p = grid_cone_program([&](int i) {
     const double jn = tail_norm(m0.data() + probe.cone_offset(i), probe.cone_dim(i));
     return i % 2 == 0 ? jn + 1e-6 : jn - 1e-3;
   });
@@ -128,7 +90,7 @@ TEST(IpmStart, BoundedConesStartJustAboveTheirBound) {
 // least ||tail|| + margin, whatever its bound.
 TEST(IpmStart, WithoutABoundedMarginBoundedConesGetTheMargin) {
   const Eigen::VectorXd x0 = inner_positions();
-  const ConeProgram p = grid_program([](int) { return 3.0; });
+  const ConeProgram p = grid_cone_program([](int) { return 3.0; });
   const double k0 = 1.5, margin = 0.05;
   IpmState st;
   initialize(p, x0, k0, margin, 1.0, st);

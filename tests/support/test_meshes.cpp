@@ -6,6 +6,7 @@
 
 #include "strictmin/mesh/generators.h"
 #include "strictmin/tasks/examples.h"
+#include "strictmin/tasks/gparam.h"
 
 namespace strictmin::test_support {
 
@@ -40,6 +41,12 @@ Problem handle_as_equalities(const Problem& p, int vertex) {
   q.eq_matrix.setFromTriplets(t.begin(), t.end());
   q.eq_rhs = p.positions.row(vertex).transpose();
   return q;
+}
+
+Problem seamless_problem(const Mesh& mesh) {
+  GParamOptions o;
+  o.solver.method = Method::L2;
+  return global_parametrize(mesh, o, "test mesh").problem;
 }
 
 }  // namespace strictmin::test_support

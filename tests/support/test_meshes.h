@@ -1,5 +1,6 @@
 #pragma once
 // Test problems shared by several test files.
+#include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
 
 namespace strictmin::test_support {
@@ -17,5 +18,9 @@ int figure2_centre(int cells);
 // The same problem with one handle replaced by equality rows x_v = its position (two rows in
 // 2D): the vertex becomes free, held by the equalities instead.
 Problem handle_as_equalities(const Problem& p, int vertex);
+
+// The seamless problem of a closed surface (tasks/gparam.h: the smoothest field, its cut, the
+// default edge length), as global parametrization builds it before its solve.
+Problem seamless_problem(const Mesh& mesh);
 
 }  // namespace strictmin::test_support
