@@ -89,7 +89,7 @@ TEST(SeamNullSpace, RefusesEqualitiesNotInBlocks) {
   const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   socp::ConeProgram prog = main_program(p);
   prog.A = Eigen::SparseMatrix<double, Eigen::RowMajor>(prog.A.topRows(1));
-  prog.beq = prog.beq.head(1);
+  prog.beq = Eigen::VectorXd(prog.beq.head(1));  // a copy: assigning a block of itself would alias
   EXPECT_FALSE(socp::block_null_space(prog).ok);
 }
 
