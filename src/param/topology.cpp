@@ -1,23 +1,13 @@
 #include "strictmin/param/topology.h"
 
 #include <algorithm>
-#include <numeric>
 #include <tuple>
 
+#include "mesh/union_find.h"
 #include "strictmin/io/input_error.h"
 
 namespace strictmin {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // A vertex is manifold when the edges (a, b) opposite to it in its faces link into one
 // path or cycle: one component of that link graph.

@@ -1,27 +1,18 @@
 #include "strictmin/problem/parts.h"
 
-#include <numeric>
+#include "mesh/union_find.h"
 
 namespace strictmin {
-namespace {
-
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
-}  // namespace
 
 ElementParts element_parts(const Problem& p, const std::vector<char>* elements) {
   const int V = p.num_vertices, c = p.corners();
-  std::vector<int> parent(V);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind sets(V);
   std::vector<char> used(V, 0);
   for (int e = 0; e < p.num_elements(); ++e) {
     if (elements && !(*elements)[e]) continue;
     for (int j = 0; j < c; ++j) {
       used[p.elements(e, j)] = 1;
-      parent[find_root(parent, p.elements(e, j))] = find_root(parent, p.elements(e, 0));
+      sets.unite(p.elements(e, j), p.elements(e, 0));
     }
   }
   ElementParts out;
@@ -29,7 +20,7 @@ ElementParts element_parts(const Problem& p, const std::vector<char>* elements) 
   std::vector<int> id(V, -1);
   for (int v = 0; v < V; ++v) {
     if (!used[v]) continue;
-    const int r = find_root(parent, v);
+    const int r = sets.find(v);
     if (id[r] < 0) id[r] = out.count++;
     out.part[v] = id[r];
   }

@@ -3,9 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <queue>
 #include <set>
+
+#include "mesh/union_find.h"
 
 namespace strictmin {
 namespace {
@@ -108,11 +109,6 @@ bool eliminate(std::vector<BlockRow>& rows, const std::vector<char>& keep, int n
   return true;
 }
 
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
 Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& m) {
   if (m.cols() == 0) return m;
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
@@ -168,8 +164,7 @@ std::vector<int> held_vertices(std::vector<BlockRow>& rows, const ElementParts& 
   std::vector<int> representative(parts.count, -1);
   for (int v : unanchored_parts(parts, anchor)) representative[parts.part[v]] = v;
   std::vector<Action> action(rows.size());
-  std::vector<int> parent(parts.count);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind sets(parts.count);
   std::vector<char> coupled(parts.count, 0);
   for (size_t r = 0; r < rows.size(); ++r) {
     if (!rows[r].alive) continue;
@@ -184,14 +179,14 @@ std::vector<int> held_vertices(std::vector<BlockRow>& rows, const ElementParts& 
       if (size_of(b) >= kZero) action[r].emplace_back(q, b);
     for (const auto& [q, b] : action[r]) {
       coupled[q] = 1;
-      parent[find_root(parent, q)] = find_root(parent, action[r][0].first);
+      sets.unite(q, action[r][0].first);
     }
   }
   std::map<int, std::vector<int>> members, component_rows;
   for (int q = 0; q < parts.count; ++q)
-    if (coupled[q]) members[find_root(parent, q)].push_back(q);
+    if (coupled[q]) members[sets.find(q)].push_back(q);
   for (size_t r = 0; r < rows.size(); ++r)
-    if (!action[r].empty()) component_rows[find_root(parent, action[r][0].first)].push_back(static_cast<int>(r));
+    if (!action[r].empty()) component_rows[sets.find(action[r][0].first)].push_back(static_cast<int>(r));
   std::vector<int> held_parts;
   for (int q = 0; q < parts.count; ++q)
     if (representative[q] >= 0 && !coupled[q]) held_parts.push_back(q);
@@ -242,10 +237,6 @@ RelaxedEqualities relaxed_equalities(const Problem& p, const std::vector<char>& 
   out.ok = true;
   return out;
 }
-
-}  // namespace strictmin
-
-namespace strictmin {
 
 std::vector<int> free_translations(const Problem& p) {
   const ElementParts parts = element_parts(p);

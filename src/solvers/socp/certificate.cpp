@@ -6,16 +6,14 @@
 
 namespace strictmin::socp {
 
-WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p, bool with_equalities)
-    : p_(p), cholesky_(/*amd_only=*/true), with_eq_(with_equalities && p.num_eq() > 0 && p.num_x > 0) {
-  if (with_eq_) {
-    factor_with_equalities();
-    return;
-  }
-  const int n = p.n, m = p.m, c = p.corners(), F = p.num_x / n;
-  if (F == 0) return;
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(p.num_element_cones()) * c * c);
+namespace {
+
+// f(vertex row, vertex column, w_i <g_j1, g_j2>) for every pair of free corners of every
+// element with row >= column (dof bases, vertex-major): the lower triangle of G^T W G's
+// vertex matrix K (each entry summed over the elements).
+template <class F>
+void for_each_gram_entry(const ConeProgram& p, F&& f) {
+  const int m = p.m, c = p.corners();
   for (int i = 0; i < p.num_element_cones(); ++i) {
     const double* g = p.grad.data() + static_cast<size_t>(i) * c * m;
     for (int j1 = 0; j1 < c; ++j1) {
@@ -26,10 +24,25 @@ WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p, bool with_equal
         if (b2 < 0 || b2 > b1) continue;
         double gram = 0;
         for (int col = 0; col < m; ++col) gram += g[j1 * m + col] * g[j2 * m + col];
-        triplets.emplace_back(b1 / n, b2 / n, p.weight[i] * gram);
+        f(b1, b2, p.weight[i] * gram);
       }
     }
   }
+}
+
+}  // namespace
+
+WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p, bool with_equalities)
+    : p_(p), cholesky_(/*amd_only=*/true), with_eq_(with_equalities && p.num_eq() > 0 && p.num_x > 0) {
+  if (with_eq_) {
+    factor_with_equalities();
+    return;
+  }
+  const int n = p.n, F = p.num_x / n;
+  if (F == 0) return;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<size_t>(p.num_element_cones()) * p.corners() * p.corners());
+  for_each_gram_entry(p, [&](int b1, int b2, double v) { triplets.emplace_back(b1 / n, b2 / n, v); });
   Eigen::SparseMatrix<double> K(F, F);
   K.setFromTriplets(triplets.begin(), triplets.end());
   cholesky_.analyze(K);
@@ -38,22 +51,11 @@ WeightedLeastSquares::WeightedLeastSquares(const ConeProgram& p, bool with_equal
 
 void WeightedLeastSquares::factor_with_equalities() {
   // K (x) I_n + A^T A on every dof, lower triangle.
-  const int n = p_.n, m = p_.m, c = p_.corners();
+  const int n = p_.n;
   std::vector<Eigen::Triplet<double>> triplets;
-  for (int i = 0; i < p_.num_element_cones(); ++i) {
-    const double* g = p_.grad.data() + static_cast<size_t>(i) * c * m;
-    for (int j1 = 0; j1 < c; ++j1) {
-      const int b1 = p_.dof_base[i * c + j1];
-      if (b1 < 0) continue;
-      for (int j2 = 0; j2 < c; ++j2) {
-        const int b2 = p_.dof_base[i * c + j2];
-        if (b2 < 0 || b2 > b1) continue;
-        double gram = 0;
-        for (int col = 0; col < m; ++col) gram += g[j1 * m + col] * g[j2 * m + col];
-        for (int d = 0; d < n; ++d) triplets.emplace_back(b1 + d, b2 + d, p_.weight[i] * gram);
-      }
-    }
-  }
+  for_each_gram_entry(p_, [&](int b1, int b2, double v) {
+    for (int d = 0; d < n; ++d) triplets.emplace_back(b1 + d, b2 + d, v);
+  });
   const Eigen::SparseMatrix<double> ata = Eigen::SparseMatrix<double>(p_.A.transpose() * p_.A);
   for (int col = 0; col < ata.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(ata, col); it; ++it)
