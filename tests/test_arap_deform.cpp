@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
+#include "test_meshes.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
@@ -116,18 +117,8 @@ TEST(Acceleration, MaximumNeverIncreases) {
 // Accelerated and plain runs reach the same maximum (to 1e-6) on a small bent bar; for l2
 // (a unique fixed point, Liu et al. 2008) the accelerated run needs fewer global steps.
 TEST(Acceleration, SameMaximumAsThePlainRun) {
-  const Mesh bar = make_grid(16, 2, 4.0, 0.5);
-  std::vector<Handle> handles;
-  for (int v = 0; v < bar.num_vertices(); ++v) {
-    const double x = bar.V(v, 0);
-    if (x > 0 && x < 4.0) continue;
-    const double angle = x == 0 ? 0.6 : -0.6;
-    const Eigen::Vector2d c(x, 0.25);
-    handles.push_back({v, Eigen::Rotation2Dd(angle) * (bar.V.row(v).transpose() - c) + c});
-  }
   for (Method method : {Method::L2, Method::Linf}) {
-    Problem p = make_problem(bar);
-    p.fix(handles);
+    Problem p = test_support::bent_bar(16, 2, 4.0, 0.5, 0.6);
     SolverOptions s;
     s.method = method;
     LocalGlobalOptions o;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strictmin/mesh/generators.h"
+#include "test_meshes.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
@@ -21,20 +22,7 @@ using namespace strictmin;
 namespace {
 
 // A 16 x 4 bar of [0, 4] x [0, 1], its ends turned by -+0.6 rad about their centres.
-Problem bent_bar() {
-  const Mesh bar = make_grid(16, 4, 4.0, 1.0);
-  std::vector<Handle> handles;
-  for (int v = 0; v < bar.num_vertices(); ++v) {
-    const double x = bar.V(v, 0);
-    if (x > 0 && x < 4.0) continue;
-    const double angle = x == 0 ? 0.6 : -0.6;
-    const Eigen::Vector2d c(x, 0.5);
-    handles.push_back({v, Eigen::Rotation2Dd(angle) * (bar.V.row(v).transpose() - c) + c});
-  }
-  Problem p = make_problem(bar);
-  p.fix(handles);
-  return p;
-}
+Problem bent_bar() { return test_support::bent_bar(16, 4, 4.0, 1.0, 0.6); }
 
 // Every target turned by a small angle varying along the bar: the next global step's problem.
 void turn_targets(Problem& p, double scale) {

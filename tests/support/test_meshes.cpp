@@ -43,6 +43,20 @@ Problem handle_as_equalities(const Problem& p, int vertex) {
   return q;
 }
 
+Problem bent_bar(int cells_x, int cells_y, double length, double height, double angle) {
+  const Mesh bar = make_grid(cells_x, cells_y, length, height);
+  std::vector<Handle> handles;
+  for (int v = 0; v < bar.num_vertices(); ++v) {
+    const double x = bar.V(v, 0);
+    if (x > 0 && x < length) continue;
+    const Eigen::Vector2d c(x, 0.5 * height);
+    handles.push_back({v, Eigen::Rotation2Dd(x == 0 ? angle : -angle) * (bar.V.row(v).transpose() - c) + c});
+  }
+  Problem p = make_problem(bar);
+  p.fix(handles);
+  return p;
+}
+
 Problem seamless_problem(const Mesh& mesh) {
   GParamOptions o;
   o.solver.method = Method::L2;

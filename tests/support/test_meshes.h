@@ -19,6 +19,10 @@ int figure2_centre(int cells);
 // 2D): the vertex becomes free, held by the equalities instead.
 Problem handle_as_equalities(const Problem& p, int vertex);
 
+// A cells_x x cells_y grid of [0, length] x [0, height] whose two ends are turned by +angle
+// (left) and -angle (right) about their centres (handles), targets the identity.
+Problem bent_bar(int cells_x, int cells_y, double length, double height, double angle);
+
 // The seamless problem of a closed surface (tasks/gparam.h: the smoothest field, its cut, the
 // default edge length), as global parametrization builds it before its solve.
 Problem seamless_problem(const Mesh& mesh);
