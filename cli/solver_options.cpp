@@ -48,6 +48,20 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
                 "first level uses --gap; below 1)")
       ->capture_default_str()
       ->check(less_than(1));
+  g->add_option("--max-levels", a.max_levels,
+                "direct: stop after this many levels (status max-iterations if elements are still free above "
+                "k-min; >= 1)")
+      ->capture_default_str()
+      ->check(at_least(1));
+  g->add_flag("--no-pin", a.no_pin,
+             "direct/exact: keep essential elements as cones at their bounds instead of pinning their Jacobians "
+             "(the behaviour before pinning; the later levels then depend on the bounds' slack)");
+  g->add_option("--pin-threshold", a.pin_threshold,
+                "direct: pin an element when its certificate multiplier is at least this (multipliers sum to 1; "
+                "in (0, 1])")
+      ->capture_default_str()
+      ->check(greater_than(0))
+      ->check(CLI::Range(0.0, 1.0));
   g->add_option("--moving-rings", a.moving_rings,
                 "direct: levels after the first move only the vertices within this many rings of the elements "
                 "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
@@ -72,6 +86,7 @@ void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& a) {
                   "arap/asap: extrapolate each target along its last change by this factor before a global step "
                   "(a momentum on the rotations, 0: off); a step that raises the maximum is repeated without")
       ->capture_default_str()
+      ->check(greater_than(0))
       ->check(CLI::Range(0.0, 1.0));
   cmd.add_flag("--lg-cold-start", a.lg_cold_start,
                 "arap/asap with linf/direct: start every global step's interior-point method afresh (default: from "
@@ -127,6 +142,10 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.direct.k_min = a.k_min;
   o.direct.level_gap = a.level_gap;
   o.direct.moving_rings = a.moving_rings;
+  o.direct.max_steps = a.max_levels;
+  o.direct.pin_essential = !a.no_pin;
+  o.direct.pin_threshold = a.pin_threshold;
+  o.exact.pin_essential = !a.no_pin;
   o.exact.max_elements = a.exact_max_elements;
   o.frame_iterations = a.frame_iterations;
   if (!out.quiet) {
@@ -138,6 +157,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
       std::fprintf(stderr, "  strict step %3d  k %.8g  fixed %d (total %d)  solves %d", s.step, s.k, s.fixed_now,
                    s.fixed_total, s.solves);
       if (s.level_free_vertices >= 0) std::fprintf(stderr, "  moving vertices %d", s.level_free_vertices);
+      if (s.pinned_total > 0) std::fprintf(stderr, "  pinned %d", s.pinned_total);
       if (s.level_iterations > 0) std::fprintf(stderr, "  %d interior-point iterations", s.level_iterations);
       std::fprintf(stderr, "  %.2f s\n", s.time_s);
     };

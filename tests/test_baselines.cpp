@@ -85,12 +85,12 @@ TEST(Lp, AffineHandlesGiveTheAffineMap) {
 // Paper Figure 13 / Section 6: L_p minimizers approach the strict minimizer as p grows
 // (Descloux 1963), first at the top levels. A 16 x 4 bar with random rotation targets (so
 // its levels are distinct), left end fixed, right end turned; the reference is the direct
-// algorithm with delta_k = 1e-4 down to k_min = 0 (exact completes on this problem too, but
-// its lower levels are ill-conditioned: docs/strict.md). Measured: the largest difference between the sorted
-// distortion vectors over the top quarter of the elements. As in the paper: the maximum
-// approaches the strict minimizer's from above for every p (4 ... 64), the top quarter
-// follows up to p = 32 (within 2% of the top level there), and beyond it the L_p map piles
-// elements up just under the maximum and drifts away again (p = 64 here; not asserted).
+// algorithm with delta_k = 1e-4 down to k_min = 0, its essential elements pinned (exact,
+// also pinned, agrees with it at every rank to 2e-5: test_strict.cpp). Measured: the largest
+// difference between the sorted distortion vectors over the top quarter of the elements. As
+// in the paper: the maximum approaches the strict minimizer's from above for every p
+// (4 ... 64), and the top quarter follows, closer at every p (0.059, 0.052, 0.028, 0.017,
+// 0.011 of the top level's 0.63), within 2% of the top level at p = 64.
 TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
   const Problem p = test_support::random_target_bar();
   DirectOptions direct;
@@ -104,7 +104,7 @@ TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
   };
   const Eigen::VectorXd reference = sorted(strict.distortion);
   const int top = p.num_elements() / 4;
-  double previous = INFINITY, previous_max = INFINITY, error_32 = INFINITY;
+  double previous = INFINITY, previous_max = INFINITY, error_64 = INFINITY;
   for (double q : {4.0, 8.0, 16.0, 32.0, 64.0}) {
     LpOptions o;
     o.p = q;
@@ -117,13 +117,11 @@ TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
     EXPECT_GE(max, reference(0) * (1 - 1e-6)) << "p = " << q;
     EXPECT_LT(max, previous_max) << "p = " << q;
     previous_max = max;
-    if (q <= 32) {
-      EXPECT_LT(error, previous) << "p = " << q;
-      previous = error;
-    }
-    if (q == 32) error_32 = error;
+    EXPECT_LT(error, previous) << "p = " << q;
+    previous = error;
+    if (q == 64) error_64 = error;
   }
-  EXPECT_LT(error_32, 0.02 * reference(0));
+  EXPECT_LT(error_64, 0.02 * reference(0));
 }
 
 TEST(Irls, LowersTheMaximumBelowL2) {

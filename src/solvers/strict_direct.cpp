@@ -11,6 +11,7 @@
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/interrupt.h"
+#include "solvers/strict_pinning.h"
 
 namespace strictmin {
 namespace {
@@ -25,31 +26,19 @@ std::vector<char> movable_elements(const Problem& p) {
 
 // One level on the region that can still change (DirectOptions::moving_rings): the vertices
 // within that many rings of the free elements move, the others keep the previous level's
-// map. Returns the level's result on the whole mesh (distortion of the elements left out:
-// their previous values, as their vertices did not move).
-template <class LevelFn>
+// map; pinned elements leave the program (strict_pinning.h).
 Result solve_restricted_level(const Problem& p, const std::vector<char>& movable_element,
                               const Eigen::VectorXd& bounds, const Result& previous, const LinfOptions& linf,
-                              const DirectOptions& options, LevelFn&& solve_level, int& moved_vertices) {
+                              const DirectOptions& options, const PinnedElements& pins, const LevelSolver& solve_level,
+                              int& moved_vertices, std::vector<int>& immobile) {
   std::vector<char> seeds(p.num_vertices, 0);
   for (int e = 0; e < p.num_elements(); ++e)
     if (movable_element[e] && bounds(e) < 0)
       for (int j = 0; j < p.corners(); ++j) seeds[p.elements(e, j)] = 1;
   const std::vector<char> moving = vertices_within_rings(p, seeds, options.moving_rings);
-  Subproblem sub = restrict_to_movable(p, moving, previous.positions);
-  moved_vertices = sub.problem.num_free();
-  LinfOptions o = linf;
-  o.element_bounds.resize(static_cast<Eigen::Index>(sub.element.size()));
-  for (size_t i = 0; i < sub.element.size(); ++i) o.element_bounds[static_cast<Eigen::Index>(i)] = bounds(sub.element[i]);
-  Result r = solve_level(sub.problem, o, sub.problem.positions);
-  Result full = r;
-  full.positions = previous.positions;
-  full.distortion = previous.distortion;
-  if (r.positions.rows() == sub.problem.num_vertices)
-    for (size_t i = 0; i < sub.vertex.size(); ++i) full.positions.row(sub.vertex[i]) = r.positions.row(static_cast<Eigen::Index>(i));
-  if (r.distortion.size() == static_cast<Eigen::Index>(sub.element.size()))
-    for (size_t i = 0; i < sub.element.size(); ++i) full.distortion[sub.element[i]] = r.distortion[static_cast<Eigen::Index>(i)];
-  return full;
+  const PinnedLevel level = pins.level_problem(p, moving, previous.positions);
+  moved_vertices = level.sub.problem.num_free();
+  return solve_on_level(p, level, bounds, previous, linf, solve_level, &immobile);
 }
 
 // The levels whose solve stopped short of its tolerance, for one summary at the end (a long
@@ -104,6 +93,7 @@ bool DirectOptions::is_valid(std::string* why) const {
       .at_least("max_steps", max_steps, 1)
       .that(level_gap < 1, "level_gap must be < 1 (negative: delta_k / 100)")
       .at_least("moving_rings", moving_rings, 0)
+      .that(pin_threshold > 0 && pin_threshold <= 1, "pin_threshold must be in (0, 1]")
       .ok();
 }
 
@@ -124,6 +114,10 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   double k = INFINITY;
   out.positions = p.positions;
   Problem level = p;
+  // Pinning needs the field deviation's strict convexity (not the local-global or frame
+  // levels' measures) and no equalities of the problem's own.
+  const bool pinning = options.pin_essential && !options.level_solver && !p.has_equalities();
+  PinnedElements pins(p);
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     check_interrupt();  // solvers/interrupt.h
     linf.element_bounds = bounds;
@@ -134,7 +128,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     }
     // Each level starts from the previous level's map: it meets every fixed bound (they are
     // widened to it below), so the solve needs no phase 1.
-    auto solve_level = [&](const Problem& problem, const LinfOptions& o, const Eigen::MatrixXd& X) -> Result {
+    const LevelSolver solve_level = [&](const Problem& problem, const LinfOptions& o, const Eigen::MatrixXd& X) -> Result {
       if (options.level_solver) return options.level_solver(problem, o, X);
       if (&problem != &p) return solve_linf(problem, o);  // a sub-problem: its positions are X
       level.positions = X;
@@ -142,16 +136,24 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     };
     Result r;
     int moved_vertices = -1;
-    if (step == 1 || options.moving_rings <= 0) {
+    std::vector<int> immobile;  // free elements that pinned groups hold (strict_pinning.h)
+    if (pins.count() == 0 && (step == 1 || options.moving_rings <= 0)) {
       r = solve_level(p, linf, out.positions);
     } else {
-      r = solve_restricted_level(p, movable, bounds, out, linf, options, solve_level, moved_vertices);
+      r = solve_restricted_level(p, movable, bounds, out, linf, options, pins, solve_level, moved_vertices, immobile);
     }
-    // This level's k over the free elements, and how well the solve certified it.
+    // Free elements held by pinned groups are constants from now on: they are fixed at their
+    // value below, and the level is the optimum over the others (the free elements here).
+    std::vector<char> level_free(movable.size(), 0);
+    for (int e = 0; e < p.num_elements(); ++e) level_free[e] = movable[e] && bounds(e) < 0;
+    for (int e : immobile) level_free[e] = 0;
+    // This level's k over its free elements, and how well the solve certified it (with none,
+    // nothing moved: the level is exact).
+    const bool any_level_free = std::find(level_free.begin(), level_free.end(), 1) != level_free.end();
     double reached = r.distortion.size() ? 0.0 : INFINITY;
     for (int e = 0; e < r.distortion.size(); ++e)
-      if (movable[e] && bounds(e) < 0) reached = std::max(reached, r.distortion(e));
-    const double gap = (reached - r.lower_bound) / std::max(1.0, std::abs(reached));
+      if (level_free[e]) reached = std::max(reached, r.distortion(e));
+    const double gap = any_level_free ? (reached - r.lower_bound) / std::max(1.0, std::abs(reached)) : 0.0;
     if (r.status != SolveStatus::Solved) {
       // A level whose solve stopped short still leaves a map that meets every fixed bound
       // (the interior-point iterates stay feasible for them to the solver's tolerance, and
@@ -176,13 +178,17 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     // them to what it reached so that it stays an exact witness of feasibility.
     for (int e = 0; e < p.num_elements(); ++e)
       if (bounds(e) >= 0) bounds(e) = std::max(bounds(e), r.distortion(e));
-    // k = the optimum of (1) over the elements still free.
+    // k = the optimum of (1) over the level's free elements (with none: the held ones').
     k = 0;
     for (int e = 0; e < p.num_elements(); ++e)
-      if (movable[e] && bounds(e) < 0) k = std::max(k, r.distortion(e));
+      if (level_free[e] || (!any_level_free && movable[e] && bounds(e) < 0)) k = std::max(k, r.distortion(e));
     int fixed_now = 0;
+    for (int e : immobile) {
+      bounds(e) = r.distortion(e) * (1 + 1e-3 * options.delta_k);
+      ++fixed_now;
+    }
     for (int e = 0; e < p.num_elements(); ++e)
-      if (movable[e] && bounds(e) < 0 && r.distortion(e) >= k - options.delta_k) {
+      if (level_free[e] && r.distortion(e) >= k - options.delta_k) {
         // Fix at the value reached (it is feasible for the map in hand), never below it.
         // A relative slack of delta_k / 1000 keeps an interior in the next level's feasible
         // set: bounds met with equality make the interior-point systems ill-conditioned
@@ -192,11 +198,12 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
       }
     fixed_total += fixed_now;
     free_left -= fixed_now;
+    if (pinning && r.multipliers.size() == p.num_elements()) pins.pin_essential(bounds, r.multipliers, options.pin_threshold);
     out.iterations = step;
     IterationRecord rec;
     rec.iteration = step;
     rec.max_distortion = k;
-    rec.lower_bound = r.lower_bound;
+    rec.lower_bound = any_level_free ? r.lower_bound : k;  // nothing moved: exact
     rec.certified_gap = gap;
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
@@ -209,6 +216,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
       info.fixed_total = fixed_total;
       info.solves = step;
       info.level_iterations = r.iterations;
+      info.pinned_total = pins.count();
       info.time_s = rec.time_s;
       options.progress(info);
     }

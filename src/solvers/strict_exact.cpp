@@ -30,6 +30,7 @@
 #include "strictmin/solvers/timing.h"
 #include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
+#include "solvers/strict_pinning.h"
 
 namespace strictmin {
 
@@ -58,14 +59,28 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   linf.progress = nullptr;
   Result out;
   int solves = 0, fixed_total = 0;
+  // Essential elements are pinned (strict_pinning.h) on problems without equalities: every
+  // solve after the first runs on the level's problem, from the map in hand.
+  const bool pinning = options.pin_essential && !p.has_equalities();
+  PinnedElements pins(p);
+  const std::vector<char> every_vertex(p.num_vertices, 1);
+  const LevelSolver plain = [](const Problem& level, const LinfOptions& o, const Eigen::MatrixXd&) {
+    return solve_linf(level, o);
+  };
+  auto solve = [&](const Eigen::VectorXd& element_bounds, const Result& from) {
+    if (pins.count() == 0) {
+      linf.element_bounds = element_bounds;
+      return solve_linf(p, linf);
+    }
+    return solve_on_level(p, pins.level_problem(p, every_vertex, from.positions), element_bounds, from, linf, plain);
+  };
   auto fail = [&](const Result& r, const std::string& where) {
     out.status = r.status;
     out.message = where + ": " + r.message;
   };
   for (int level = 1; undecided > 0; ++level) {
     check_interrupt();  // solvers/interrupt.h
-    linf.element_bounds = bounds;
-    const Result r = solve_linf(p, linf);
+    const Result r = solve(bounds, out);
     ++solves;
     if (level == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
@@ -111,8 +126,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
       Eigen::VectorXd test = bounds;
       for (int e = 0; e < p.num_elements(); ++e)
         if (movable[e] && bounds(e) < 0 && e != i) test(e) = k;
-      linf.element_bounds = test;
-      const Result t = solve_linf(p, linf);
+      const Result t = solve(test, r);
       ++solves;
       if (t.status != SolveStatus::Solved) {
         fail(t, "exact level " + std::to_string(level) + ", element " + std::to_string(i));
@@ -126,7 +140,10 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
         if (candidate[e] && t.distortion(e) < k - tol) candidate[e] = 0;
     }
     if (out.status != SolveStatus::Solved) break;
-    for (int e : essential) bounds(e) = k;
+    for (int e : essential) {
+      bounds(e) = k;
+      if (pinning) pins.pin(e);
+    }
     fixed_total += static_cast<int>(essential.size());
     undecided -= static_cast<int>(essential.size());
     out.iterations = level;

@@ -27,6 +27,7 @@ struct StrictStep {
   double time_s = 0;
   int level_iterations = 0;      // interior-point iterations of this step's solve (direct)
   int level_free_vertices = -1;  // vertices this step's solve moved (-1: not reported)
+  int pinned_total = 0;          // elements pinned so far (DirectOptions::pin_essential)
 };
 
 // Solves one level of the direct algorithm: problem (1) with the bounds in
@@ -48,11 +49,17 @@ struct DirectOptions {
   // the region that can still change (problem/subproblem.h). 0: every vertex moves at every
   // level (the paper's Algorithm 2 as stated). See docs/strict.md for what it costs.
   int moving_rings = 2;
+  // Pin the essential elements (certificate multiplier >= pin_threshold) after each level:
+  // they leave the later levels' programs and their Jacobians are held (docs/strict.md,
+  // "Pinned elements"). Only with the field deviation through solve_linf (no level_solver)
+  // and on problems without equalities; elsewhere ignored.
+  bool pin_essential = true;
+  double pin_threshold = 1e-4;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
 
   // Ranges: delta_k > 0, k_min >= 0, max_steps >= 1, level_gap < 1 (negative: the default),
-  // moving_rings >= 0. False with the reason in *why otherwise.
+  // moving_rings >= 0, pin_threshold in (0, 1]. False with the reason in *why otherwise.
   bool is_valid(std::string* why = nullptr) const;
 };
 
@@ -61,6 +68,9 @@ struct ExactOptions {
   // below k - tolerance (see strict_exact.cpp for why not smaller).
   double tolerance = 1e-3;
   int max_elements = 3000;  // refuse larger meshes (see docs/strict.md)
+  // Pin the essential elements (their Jacobians held, out of the later programs; docs/strict.md,
+  // "Pinned elements"); on problems without equalities, else ignored.
+  bool pin_essential = true;
   std::function<void(const StrictStep&)> progress;
 
   // Ranges: tolerance > 0, max_elements >= 1.

@@ -1,0 +1,145 @@
+#include "solvers/strict_pinning.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/union_find.h"
+
+namespace strictmin {
+
+int PinnedElements::pin_essential(const Eigen::VectorXd& bounds, const Eigen::VectorXd& multipliers,
+                                  double threshold) {
+  int now = 0;
+  for (Eigen::Index e = 0; e < multipliers.size(); ++e)
+    if (!pinned_[e] && bounds(e) >= 0 && multipliers(e) >= threshold) {
+      pinned_[e] = 1;
+      ++now;
+    }
+  count_ += now;
+  return now;
+}
+
+PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<char>& moving,
+                                          const Eigen::MatrixXd& X) const {
+  const int V = p.num_vertices, E = p.num_elements(), c = p.corners(), n = p.image_dim;
+  // Groups: vertices joined by pinned elements.
+  UnionFind groups(V);
+  std::vector<char> grouped(V, 0);
+  for (int e = 0; e < E; ++e)
+    if (pinned_[e])
+      for (int j = 0; j < c; ++j) {
+        grouped[p.elements(e, j)] = 1;
+        groups.unite(p.elements(e, 0), p.elements(e, j));
+      }
+  // A group touching a vertex that does not move is held still.
+  std::vector<char> held(V, 0);
+  for (int v = 0; v < V; ++v)
+    if (grouped[v] && (p.fixed[v] || !moving[v])) held[groups.find(v)] = 1;
+  std::vector<char> movable(V, 0);
+  for (int v = 0; v < V; ++v) movable[v] = moving[v] && !(grouped[v] && held[groups.find(v)]);
+  std::vector<char> kept(E, 0);
+  for (int e = 0; e < E; ++e) kept[e] = !pinned_[e];
+
+  PinnedLevel out;
+  out.sub = restrict_to_movable(p, movable, X, &kept);
+  // The free groups: one root among each group's vertices in the sub-problem, a translation
+  // equality (n rows) per other member there, and every member for the translation after.
+  std::vector<int> local(V, -1);
+  for (size_t i = 0; i < out.sub.vertex.size(); ++i) local[out.sub.vertex[i]] = static_cast<int>(i);
+  std::vector<int> group_of_root(V, -1);
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<double> rhs;
+  for (int v = 0; v < V; ++v) {
+    if (!grouped[v] || !movable[v]) continue;
+    const int g = groups.find(v);
+    if (group_of_root[g] < 0) {
+      group_of_root[g] = static_cast<int>(out.groups.size());
+      out.groups.push_back({});
+    }
+    PinnedLevel::Group& group = out.groups[group_of_root[g]];
+    if (local[v] < 0) {
+      group.outside.push_back(v);
+      continue;
+    }
+    if (group.root < 0) {
+      group.root = v;
+      group.root_local = local[v];
+      group.root_start = X.row(v);
+      continue;
+    }
+    for (int r = 0; r < n; ++r) {
+      const int row = static_cast<int>(rhs.size());
+      triplets.emplace_back(row, local[v] * n + r, 1.0);
+      triplets.emplace_back(row, local[group.root] * n + r, -1.0);
+      rhs.push_back(X(v, r) - X(group.root, r));
+    }
+  }
+  Problem& s = out.sub.problem;
+  if (!rhs.empty()) {
+    s.eq_matrix.resize(static_cast<Eigen::Index>(rhs.size()), static_cast<Eigen::Index>(s.num_vertices) * n);
+    s.eq_matrix.setFromTriplets(triplets.begin(), triplets.end());
+    s.eq_rhs = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
+  }
+  return out;
+}
+
+void PinnedLevel::scatter(const Eigen::MatrixXd& level_positions, Eigen::MatrixXd& positions) const {
+  for (size_t i = 0; i < sub.vertex.size(); ++i)
+    positions.row(sub.vertex[i]) = level_positions.row(static_cast<Eigen::Index>(i));
+  // Members of a free group outside the sub-problem (every element around them pinned)
+  // follow their group's translation.
+  for (const Group& group : groups) {
+    if (group.root_local < 0 || group.outside.empty()) continue;
+    const Eigen::RowVectorXd shift = level_positions.row(group.root_local) - group.root_start;
+    for (int v : group.outside) positions.row(v) += shift;
+  }
+}
+
+Result solve_on_level(const Problem& p, const PinnedLevel& level, const Eigen::VectorXd& bounds,
+                      const Result& previous, const LinfOptions& linf, const LevelSolver& solve,
+                      std::vector<int>* immobile_free) {
+  const Subproblem& sub = level.sub;
+  const int E = p.num_elements();
+  std::vector<char> in_level(E, 0);
+  for (int e : sub.element) in_level[e] = 1;
+  // The level's free elements that cannot move bound its optimum from below.
+  double immobile = -INFINITY;
+  if (immobile_free) immobile_free->clear();
+  for (int e = 0; e < E; ++e) {
+    if (bounds(e) >= 0 || in_level[e]) continue;
+    bool movable = false;
+    for (int j = 0; j < p.corners() && !movable; ++j) movable = !p.fixed[p.elements(e, j)];
+    if (!movable) continue;
+    immobile = std::max(immobile, previous.distortion(e));
+    if (immobile_free) immobile_free->push_back(e);
+  }
+  Result full = previous;
+  full.multipliers = Eigen::VectorXd::Zero(E);
+  full.history.clear();
+  if (sub.problem.num_free() == 0) {
+    full.status = SolveStatus::Solved;
+    full.message = "no vertex can move: the map in hand is the level's optimum";
+    full.iterations = 0;
+    full.lower_bound = immobile_free ? 0.0 : std::max(0.0, immobile);
+    return full;
+  }
+  LinfOptions o = linf;
+  o.element_bounds.resize(static_cast<Eigen::Index>(sub.element.size()));
+  for (size_t i = 0; i < sub.element.size(); ++i) o.element_bounds[static_cast<Eigen::Index>(i)] = bounds(sub.element[i]);
+  Result r = solve(sub.problem, o, sub.problem.positions);
+  full.status = r.status;
+  full.message = r.message;
+  full.iterations = r.iterations;
+  full.lower_bound = immobile_free ? r.lower_bound : std::max(r.lower_bound, immobile);
+  full.history = r.history;
+  full.time_s = r.time_s;
+  if (r.positions.rows() == sub.problem.num_vertices) level.scatter(r.positions, full.positions);
+  const auto n_sub = static_cast<Eigen::Index>(sub.element.size());
+  if (r.distortion.size() == n_sub)
+    for (Eigen::Index i = 0; i < n_sub; ++i) full.distortion[sub.element[i]] = r.distortion[i];
+  if (r.multipliers.size() == n_sub)
+    for (Eigen::Index i = 0; i < n_sub; ++i) full.multipliers[sub.element[i]] = r.multipliers[i];
+  return full;
+}
+
+}  // namespace strictmin
