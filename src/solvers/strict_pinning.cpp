@@ -49,8 +49,19 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
   std::vector<int> group_of_root(V, -1);
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<double> rhs;
+  auto tie = [&](int v, int to) {  // q_v - q_to = X_v - X_to, n rows
+    for (int r = 0; r < n; ++r) {
+      const int row = static_cast<int>(rhs.size());
+      triplets.emplace_back(row, local[v] * n + r, 1.0);
+      triplets.emplace_back(row, local[to] * n + r, -1.0);
+      rhs.push_back(X(v, r) - X(to, r));
+    }
+  };
+  // Members of the free groups: each group's root and its members outside the sub-problem.
+  std::vector<char> in_free_group(V, 0);
   for (int v = 0; v < V; ++v) {
     if (!grouped[v] || !movable[v]) continue;
+    in_free_group[v] = 1;
     const int g = groups.find(v);
     if (group_of_root[g] < 0) {
       group_of_root[g] = static_cast<int>(out.groups.size());
@@ -59,20 +70,43 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
     PinnedLevel::Group& group = out.groups[group_of_root[g]];
     if (local[v] < 0) {
       group.outside.push_back(v);
-      continue;
-    }
-    if (group.root < 0) {
+    } else if (group.root < 0) {
       group.root = v;
       group.root_local = local[v];
       group.root_start = X.row(v);
-      continue;
     }
-    for (int r = 0; r < n; ++r) {
-      const int row = static_cast<int>(rhs.size());
-      triplets.emplace_back(row, local[v] * n + r, 1.0);
-      triplets.emplace_back(row, local[group.root] * n + r, -1.0);
-      rhs.push_back(X(v, r) - X(group.root, r));
-    }
+  }
+  // The rows follow a spanning forest of the members in the sub-problem along the pinned
+  // elements' edges (a star on the root would make A A^T dense over a large group: the
+  // equalities' least squares factor it), and each tree's root is tied to its group's root.
+  std::vector<std::vector<int>> adjacent(V);
+  for (int e = 0; e < E; ++e) {
+    if (!pinned_[e]) continue;
+    for (int i = 0; i < c; ++i)
+      for (int j = i + 1; j < c; ++j) {
+        const int a = p.elements(e, i), b = p.elements(e, j);
+        if (in_free_group[a] && in_free_group[b] && local[a] >= 0 && local[b] >= 0) {
+          adjacent[a].push_back(b);
+          adjacent[b].push_back(a);
+        }
+      }
+  }
+  std::vector<char> reached(V, 0);
+  std::vector<int> queue;
+  for (int start = 0; start < V; ++start) {
+    if (!in_free_group[start] || local[start] < 0 || reached[start]) continue;
+    // The root is its group's first member in the sub-problem, so its tree comes first.
+    const int root = out.groups[group_of_root[groups.find(start)]].root;
+    if (start != root) tie(start, root);
+    reached[start] = 1;
+    queue.assign(1, start);
+    for (size_t head = 0; head < queue.size(); ++head)
+      for (int w : adjacent[queue[head]])
+        if (!reached[w]) {
+          reached[w] = 1;
+          tie(w, queue[head]);
+          queue.push_back(w);
+        }
   }
   Problem& s = out.sub.problem;
   if (!rhs.empty()) {
