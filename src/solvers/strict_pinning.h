@@ -12,8 +12,9 @@
 // a shell as thin as the bound's slack, and their Newton systems become ill-conditioned.
 // Pinned instead, it leaves the program: its J_T is held, which holds its corners' positions
 // relative to each other, so the vertices of one connected group of pinned elements move by
-// one common translation (equalities q_v - q_root = X_v - X_root), and a group that touches
-// a vertex that does not move at this level does not move at all.
+// one common translation (equalities q_v - q_w = X_v - X_w along a spanning forest of the
+// group's edges), and a group that touches a vertex that does not move at this level does not
+// move at all.
 #include <Eigen/Core>
 #include <vector>
 
