@@ -57,6 +57,25 @@ class Deform(unittest.TestCase):
         # Levels after the first stop at delta-k / 100 = 1e-5 (--level-gap), none stalls here.
         self.assertLessEqual(s["worst_level_gap"], 1e-5)
 
+    def test_direct_level_cap_and_pinning_switch(self):
+        # --max-levels stops direct with elements still free above k-min: max-iterations, exit 2.
+        p = run("deform", "--example", "square", "--method", "direct", "--max-levels", "2", "--summary", "-",
+                "--quiet", check_code=2)
+        s = json.loads(p.stdout)
+        self.assertEqual((s["status"], s["levels"], s["usable"]), ("max-iterations", 2, True))
+        self.assertIn("level cap (2)", s["stop_reason"])
+        # Pinned or not, the first level is the L-infinity optimum (Figure 2: 0.3) and both
+        # end solved; the progress lines count the pinned elements.
+        pinned = run("deform", "--example", "square", "--method", "direct", "--summary", "-", check_code=0)
+        plain = run("deform", "--example", "square", "--method", "direct", "--no-pin", "--summary", "-",
+                    check_code=0)
+        self.assertIn("pinned", pinned.stderr)
+        self.assertNotIn("pinned", plain.stderr)
+        for q in (pinned, plain):
+            s = json.loads(q.stdout)
+            self.assertEqual(s["status"], "solved")
+            self.assertAlmostEqual(s["max_distortion"], 0.3, delta=1e-6)
+
     def test_outputs_and_distortion_file(self):
         out = os.path.join(self.dir, "bar.ply")
         dist = os.path.join(self.dir, "bar.txt")

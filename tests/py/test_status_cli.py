@@ -17,7 +17,7 @@ class OptionRanges(unittest.TestCase):
         ("--level-gap", "2"), ("--moving-rings", "-1"), ("--exact-max-elements", "0"),
         ("--lg-iterations", "0"), ("--lg-tolerance", "-1"), ("--threads", "-1"), ("--delta-k", "abc"),
         ("--frame-iterations", "0"), ("--lg-extrapolation", "1.5"), ("--lg-extrapolation", "-0.1"),
-        ("--lg-acceleration", "51"),
+        ("--lg-acceleration", "51"), ("--max-levels", "0"), ("--pin-threshold", "0"), ("--pin-threshold", "1.5"),
     ]
 
     def test_out_of_range_flags_exit_1_naming_the_flag(self):
