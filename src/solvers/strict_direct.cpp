@@ -233,6 +233,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     out.status = short_levels.status();
     stop_message = free_left == 0 ? "every element fixed after " + std::to_string(out.iterations) + " levels"
                                   : "the level fell to k_min after " + std::to_string(out.iterations) + " levels";
+    if (pins.count() > 0) stop_message += " (" + std::to_string(pins.count()) + " elements pinned)";
   }
   out.message = stop_message;
   const std::string levels = short_levels.message(out.iterations);

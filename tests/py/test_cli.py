@@ -71,6 +71,8 @@ class Deform(unittest.TestCase):
                     check_code=0)
         self.assertIn("pinned", pinned.stderr)
         self.assertNotIn("pinned", plain.stderr)
+        self.assertRegex(json.loads(pinned.stdout)["stop_reason"], r"\(\d+ elements pinned\)")
+        self.assertNotIn("pinned", json.loads(plain.stdout)["stop_reason"])
         for q in (pinned, plain):
             s = json.loads(q.stdout)
             self.assertEqual(s["status"], "solved")
