@@ -98,11 +98,7 @@ TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
   direct.k_min = 0;
   const Result strict = solve_direct(p, direct);
   ASSERT_TRUE(strict.ok()) << strict.message;
-  const auto sorted = [](Eigen::VectorXd d) {
-    std::sort(d.data(), d.data() + d.size(), std::greater<>());
-    return d;
-  };
-  const Eigen::VectorXd reference = sorted(strict.distortion);
+  const Eigen::VectorXd reference = test_support::sorted_down(strict.distortion);
   const int top = p.num_elements() / 4;
   double previous = INFINITY, previous_max = INFINITY, error_64 = INFINITY;
   for (double q : {4.0, 8.0, 16.0, 32.0, 64.0}) {
@@ -110,7 +106,7 @@ TEST(Lp, ApproachesTheStrictMinimizersTopLevelsAsPGrows) {
     o.p = q;
     const Result r = solve_lp(p, o);
     ASSERT_TRUE(r.ok()) << "p = " << q << ": " << r.message;
-    const double error = (sorted(r.distortion).head(top) - reference.head(top)).cwiseAbs().maxCoeff();
+    const double error = (test_support::sorted_down(r.distortion).head(top) - reference.head(top)).cwiseAbs().maxCoeff();
     std::printf("p = %2.0f: max %.5f (strict %.5f), top-quarter difference %.5f\n", q, r.distortion.maxCoeff(),
                 reference(0), error);
     const double max = r.distortion.maxCoeff();

@@ -154,16 +154,11 @@ TEST(PinnedElements, AnElementThatCannotMoveBoundsTheLevel) {
   EXPECT_EQ(r.positions, g.X);
 }
 
-Eigen::VectorXd sorted_down(Eigen::VectorXd d) {
-  std::sort(d.data(), d.data() + d.size(), std::greater<>());
-  return d;
-}
-
 // On the random-target bar (levels extremely sensitive to the fixed bounds: test_strict.cpp)
 // the pinned levels are a property of the problem far more than of the tolerances: direct
 // with the default tolerances and with first-level gap 1e-12, level gap 1e-11 agree at every
-// rank to 1.1e-4 (measured; the same number of levels). Unpinned, the same two runs differ
-// by 1.1e-2 (70 and 66 levels): the bounds' slack, not the problem, set the lower levels.
+// rank to 1.1e-4 (measured; the same number of levels). Unpinned, the same two runs differed
+// by 1.1e-2 (70 and 66 levels; docs/strict.md): the bounds' slack set the lower levels.
 TEST(PinnedElements, DirectLevelsDoNotDependOnTheTolerances) {
   const Problem p = test_support::random_target_bar();
   DirectOptions o;
@@ -176,17 +171,14 @@ TEST(PinnedElements, DirectLevelsDoNotDependOnTheTolerances) {
   o.level_gap = 1e-11;
   const Result tight = solve_direct(p, o, tight_linf);
   ASSERT_TRUE(tight.ok()) << tight.message;
-  const Eigen::VectorXd a = sorted_down(loose.distortion), b = sorted_down(tight.distortion);
+  const Eigen::VectorXd a = test_support::sorted_down(loose.distortion), b = test_support::sorted_down(tight.distortion);
+  // A pinned Jacobian is known to about the square root of its level's gap (about 5e-4 at the
+  // default level gap 1e-7 here; docs/strict.md, "Limits"), which bounds how far the later
+  // levels can move; the measured difference is well inside that.
   for (int i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 3e-4) << "rank " << i;
   EXPECT_EQ(loose.iterations, tight.iterations);
-  // The same two runs without pinning, for the record.
-  o.pin_essential = false;
-  const Result plain_tight = solve_direct(p, o, tight_linf);
-  o.level_gap = -1;
-  const Result plain_loose = solve_direct(p, o);
-  const double spread = (sorted_down(plain_loose.distortion) - sorted_down(plain_tight.distortion)).cwiseAbs().maxCoeff();
-  std::printf("pinned: %d levels, largest difference %.2e; unpinned: %d and %d levels, largest difference %.2e\n",
-              loose.iterations, (a - b).cwiseAbs().maxCoeff(), plain_loose.iterations, plain_tight.iterations, spread);
+  std::printf("%d levels each; largest difference at any rank %.3g\n", loose.iterations,
+              (a - b).cwiseAbs().maxCoeff());
 }
 
 }  // namespace

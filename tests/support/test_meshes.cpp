@@ -1,6 +1,8 @@
 #include "test_meshes.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -9,6 +11,11 @@
 #include "strictmin/tasks/gparam.h"
 
 namespace strictmin::test_support {
+
+Eigen::VectorXd sorted_down(Eigen::VectorXd values) {
+  std::sort(values.data(), values.data() + values.size(), std::greater<>());
+  return values;
+}
 
 Problem random_target_bar() {
   const Mesh mesh = make_grid(16, 4, 4.0, 1.0);

@@ -5,6 +5,10 @@
 
 namespace strictmin::test_support {
 
+// The values of a distortion vector from largest to smallest (the distributions that the
+// strict order compares rank by rank).
+Eigen::VectorXd sorted_down(Eigen::VectorXd values);
+
 // A 4 x 1 bar of 16 x 4 grid cells (128 triangles) with random rotation targets (angles in
 // [-0.4, 0.4], seed 3), so that its strict-minimizer levels are distinct; the left end is
 // fixed, the right end turned by 0.5 rad and moved. Used for the L_p and exact tests.
