@@ -23,6 +23,7 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "strictmin/io/input_error.h"
@@ -67,12 +68,18 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   const LevelSolver plain = [](const Problem& level, const LinfOptions& o, const Eigen::MatrixXd&) {
     return solve_linf(level, o);
   };
-  auto solve = [&](const Eigen::VectorXd& element_bounds, const Result& from) {
-    if (pins.count() == 0) {
+  // The problem of the solves from the map `from` (built once for the level's solve and once
+  // for all its test solves): the whole problem until something is pinned.
+  auto level_problem = [&](const Result& from) {
+    return pins.count() == 0 ? std::optional<PinnedLevel>() : pins.level_problem(p, every_vertex, from.positions);
+  };
+  auto solve = [&](const std::optional<PinnedLevel>& level, const Eigen::VectorXd& element_bounds,
+                   const Result& from) {
+    if (!level) {
       linf.element_bounds = element_bounds;
       return solve_linf(p, linf);
     }
-    return solve_on_level(p, pins.level_problem(p, every_vertex, from.positions), element_bounds, from, linf, plain);
+    return solve_on_level(p, *level, element_bounds, from, linf, plain);
   };
   auto fail = [&](const Result& r, const std::string& where) {
     out.status = r.status;
@@ -80,7 +87,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   };
   for (int level = 1; undecided > 0; ++level) {
     check_interrupt();  // solvers/interrupt.h
-    const Result r = solve(bounds, out);
+    const Result r = solve(level_problem(out), bounds, out);
     ++solves;
     if (level == 1) out.lower_bound = r.lower_bound;
     out.positions = r.positions;
@@ -120,13 +127,14 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
         candidate[strongest] = 0;
       }
     }
+    const std::optional<PinnedLevel> tests_level = level_problem(r);
     for (int i = 0; i < p.num_elements(); ++i) {
       if (!candidate[i]) continue;
       // min D_i subject to the fixed bounds and D_j <= k for every other free element.
       Eigen::VectorXd test = bounds;
       for (int e = 0; e < p.num_elements(); ++e)
         if (movable[e] && bounds(e) < 0 && e != i) test(e) = k;
-      const Result t = solve(test, r);
+      const Result t = solve(tests_level, test, r);
       ++solves;
       if (t.status != SolveStatus::Solved) {
         fail(t, "exact level " + std::to_string(level) + ", element " + std::to_string(i));

@@ -55,7 +55,6 @@ class PinnedElements {
   }
 
   int count() const { return count_; }
-  bool is_pinned(int e) const { return pinned_[e] != 0; }
 
   // The level's problem: the vertices flagged in `moving` that are not held by a pinned
   // group (a group touching a fixed or non-moving vertex), the elements that are neither
