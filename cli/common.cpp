@@ -11,7 +11,6 @@
 
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
-#include "strictmin/version.h"
 
 // OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -86,7 +85,7 @@ void write_outputs(const OutputOptions& out, const nlohmann::json& summary, cons
   }
   if (out.summary.empty()) return;
   nlohmann::json s = summary;
-  s["version"] = std::string(version());  // every summary says which strictmin wrote it
+  add_provenance_summary(s);  // every summary says which strictmin wrote it, on which kernels
   if (out.summary == "-") {
     std::cout << s.dump(2) << std::endl;
   } else {

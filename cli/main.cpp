@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "runtime/blas_kernels.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/version.h"
 
@@ -22,6 +23,7 @@ static void use_one_blas_thread() {
 }
 
 int main(int argc, char** argv) {
+  strictmin::runtime::rerun_with_better_blas_kernels(argv);  // returns unless OpenBLAS fell back to Prescott
   use_one_blas_thread();
   CLI::App app{
       "strictmin: maps of triangle and tetrahedral meshes with the least possible worst-case distortion\n"

@@ -3,6 +3,7 @@
 
 #include "strictmin/version.h"
 #include "bindings.h"
+#include "runtime/blas_kernels.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/interrupt.h"
 
@@ -20,6 +21,12 @@ PYBIND11_MODULE(_strictmin, m) {
     } catch (const strictmin::Interrupted&) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
+  });
+  // The BLAS kernels (src/runtime/blas_kernels.h): the interpreter cannot be re-run as the
+  // command is, so the module only reports them.
+  m.def("blas_kernels", [] {
+    const char* better = strictmin::runtime::better_openblas_core();
+    return py::make_tuple(strictmin::runtime::openblas_core(), better ? py::object(py::str(better)) : py::none());
   });
   strictmin::python::bind_io(m);
   strictmin::python::bind_tasks(m);

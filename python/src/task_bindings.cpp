@@ -108,7 +108,7 @@ py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::Vect
   });
   nlohmann::json s = deform_summary(mesh, handles.size(), options, *d, {});
   s["time_s"] = seconds_since(t0);
-  s["version"] = STRICTMIN_VERSION;
+  add_provenance_summary(s);
   const bool lg = options.measure == Measure::Arap || options.measure == Measure::Asap;
   py::dict out = result_dict(d->result, "positions", d->deformed.V, d->measured.distortion, d->measured.weights,
                              history_stage(options.solver, lg), s);
@@ -139,7 +139,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   });
   nlohmann::json s = param_summary(mesh, options, *p, {});
   s["time_s"] = seconds_since(t0);
-  s["version"] = STRICTMIN_VERSION;
+  add_provenance_summary(s);
   const bool lg = !options.init_only && options.measure != Measure::FieldDeviation;
   py::dict out = result_dict(p->result, "uv", p->result.positions, p->measured.distortion, p->measured.weights,
                              history_stage(options.solver, lg), s);
@@ -202,7 +202,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   });
   nlohmann::json s = gparam_summary(mesh, options, *g, field_name, {});
   s["time_s"] = seconds_since(t0);
-  s["version"] = STRICTMIN_VERSION;
+  add_provenance_summary(s);
   const bool lg = options.measure != Measure::FieldDeviation;
   py::dict out = result_dict(g->result, "uv", g->mapped.UV, g->measured.distortion, g->measured.weights,
                              history_stage(options.solver, lg), s);
@@ -258,7 +258,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
     frame["time_s"] = seconds[i];
     s["frames"] = nlohmann::json::array({frame});
     s["time_s"] = seconds[i];
-    s["version"] = STRICTMIN_VERSION;
+    add_provenance_summary(s);
     py::dict r = result_dict(f.result, "positions", f.mesh.V, f.result.distortion, f.weights, "local-global", s);
     r["t"] = f.t;
     out.append(r);

@@ -19,8 +19,19 @@ from ._result import Result
 
 __version__ = _strictmin.__version__
 
-__all__ = ["read_mesh", "write_mesh", "deform", "param", "gparam", "interp", "distortion", "compare", "Result",
+__all__ = ["blas_kernels", "read_mesh", "write_mesh", "deform", "param", "gparam", "interp", "distortion", "compare", "Result",
            "Comparison"]
+
+def blas_kernels():
+    """The dense kernels under the sparse factorizations, as ``(core, better)``: ``core`` the
+    kernel set OpenBLAS runs ("" when the BLAS is not OpenBLAS); ``better`` the set to ask
+    for with ``OPENBLAS_CORETYPE=better`` in the environment before Python starts, when
+    OpenBLAS fell back to its generic Prescott kernels on a processor with AVX2 or AVX-512
+    (the factorizations then run about twice as fast), else None. The strictmin command does
+    this by itself."""
+    core, better = _strictmin.blas_kernels()
+    return core, better
+
 
 class Comparison(tuple):
     """The strict order of d1 against d2, unpacked as ``order, level = compare(...)``:

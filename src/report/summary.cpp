@@ -2,12 +2,20 @@
 
 #include <cmath>
 
+#include "runtime/blas_kernels.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/tasks/conformal_method.h"
+#include "strictmin/version.h"
 
 namespace strictmin {
 
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+void add_provenance_summary(nlohmann::json& s) {
+  s["version"] = std::string(version());
+  const std::string core = runtime::openblas_core();
+  if (!core.empty()) s["blas_kernels"] = "OpenBLAS " + core;
+}
 
 void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
   s["max_distortion"] = number_or_null(stats.max);

@@ -20,6 +20,10 @@ namespace strictmin {
 // A JSON number, or null for a non-finite value (an infinite distortion, no bound).
 nlohmann::json number_or_null(double x);
 
+// The keys that say what wrote a summary: version (strictmin::version()) and, when the BLAS is
+// OpenBLAS, blas_kernels (e.g. "OpenBLAS SkylakeX": the dense kernels the run's factorizations used).
+void add_provenance_summary(nlohmann::json& s);
+
 // The distortion keys of every summary: max_distortion, max_element, l2_distortion,
 // mean_distortion, flipped.
 void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats);

@@ -3,11 +3,12 @@ messages for bad input. Run by ctest with STRICTMIN_CLI pointing at the built to
 import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 import unittest
 
-from cli_support import DATA, run, write
+from cli_support import CLI, DATA, run, write
 
 
 SUMMARY_KEYS = {"task", "version", "method", "measure", "elements", "max_distortion", "l2_distortion", "flipped", "status", "time_s"}
@@ -210,6 +211,29 @@ class Eval(unittest.TestCase):
         self.assertEqual(s["flipped"], 1)
         s = json.loads(run("eval", rest, mapped, "--measure", "qc", "--summary", "-", "-q", check_code=0).stdout)
         self.assertIsNone(s["max_distortion"], "an infinite distortion is null in JSON")
+
+
+class BlasKernels(unittest.TestCase):
+    """Debian 12's OpenBLAS falls back to its generic Prescott kernels on processors it does not
+    know; the command then runs itself again with OPENBLAS_CORETYPE set (src/runtime/blas_kernels.h)."""
+
+    def kernels(self, **env):
+        environment = {k: v for k, v in os.environ.items() if k != "OPENBLAS_CORETYPE"}
+        environment.update(env)
+        p = subprocess.run([CLI, "deform", "--example", "square", "--method", "l2", "--summary", "-", "--quiet"],
+                           capture_output=True, text=True, timeout=60, env=environment)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        return json.loads(p.stdout).get("blas_kernels")
+
+    def test_the_users_choice_stands_and_no_fallback_on_a_processor_with_avx2(self):
+        if self.kernels() is None:
+            self.skipTest("the BLAS is not OpenBLAS")
+        self.assertEqual(self.kernels(OPENBLAS_CORETYPE="Prescott"), "OpenBLAS Prescott")
+        self.assertEqual(self.kernels(OPENBLAS_CORETYPE="Haswell"), "OpenBLAS Haswell")
+        with open("/proc/cpuinfo") as f:
+            flags = set(next((line for line in f if line.startswith("flags")), "").split())
+        if {"avx2", "fma"} <= flags:
+            self.assertNotEqual(self.kernels(), "OpenBLAS Prescott", "the generic kernels on a processor with AVX2")
 
 
 if __name__ == "__main__":

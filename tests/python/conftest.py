@@ -7,6 +7,8 @@ import subprocess
 import numpy as np
 import pytest
 
+import strictmin
+
 CLI = os.environ.get("STRICTMIN_CLI", "")
 
 
@@ -62,7 +64,13 @@ def square_handles(V, n, shift=0.25):
 def run_cli(*args):
     if not CLI:
         pytest.skip("STRICTMIN_CLI is not set (ctest sets it)")
-    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
+    # The tool runs on the module's dense kernels: it would otherwise choose better ones than
+    # OpenBLAS's generic fallback (src/runtime/blas_kernels.h), and the maps would differ by round-off.
+    env = dict(os.environ)
+    core = strictmin.blas_kernels()[0]
+    if core and "OPENBLAS_CORETYPE" not in env:
+        env["OPENBLAS_CORETYPE"] = core
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300, env=env)
     if p.returncode not in (0, 2):
         raise AssertionError(f"strictmin {' '.join(map(str, args))}: exit {p.returncode}\n{p.stderr[-2000:]}")
     return p

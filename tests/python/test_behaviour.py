@@ -268,3 +268,19 @@ def test_local_global_step_options():
     assert abs(fast.max_distortion - plain.max_distortion) <= 1e-6
     with pytest.raises(ValueError, match="target_extrapolation"):
         strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_extrapolation=1.5)
+
+
+def test_blas_kernels_reports_the_kernels_and_a_better_set_only_after_the_generic_fallback():
+    import subprocess
+    import sys
+    core, better = strictmin.blas_kernels()
+    assert isinstance(core, str)
+    assert better is None or (core == "Prescott" and better in ("SkylakeX", "Haswell"))
+    if not core:
+        pytest.skip("the BLAS is not OpenBLAS")
+    # OPENBLAS_CORETYPE, read when OpenBLAS loads, is the user's choice: nothing better is offered.
+    env = dict(os.environ, OPENBLAS_CORETYPE="Haswell")
+    out = subprocess.run([sys.executable, "-c", "import strictmin; print(strictmin.blas_kernels())"],
+                         env=env, capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "('Haswell', None)"
