@@ -1,6 +1,7 @@
 #include "linf_active_set_policy.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -9,6 +10,11 @@
 #include "solvers/linf_active_set.h"
 
 namespace strictmin::linf_detail {
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
 
 ActiveSetPolicy::ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds)
     : mp_(mp), effective_bounds_(effective_bounds) {}
@@ -96,9 +102,11 @@ void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::Matri
   double growth = kMapGrowth;
   if (mp_.prog.num_eq() > 0 && !chosen.empty())
     growth = std::max(growth, static_cast<double>(kMapMinElements) / static_cast<double>(chosen.size()));
+  const auto t0 = std::chrono::steady_clock::now();
   const ActiveSetSolve m = active_set_map(p, widen_by_rings(p, chosen, kMapRings, growth), X, effective_bounds_, mp_.options);
   if (mp_.options.verbose)
-    std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations)\n", m.elements, m.iterations);
+    std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations, %.3f s)\n", m.elements, m.iterations,
+                 seconds_since(t0));
   if (m.positions.size() == 0 || !m.positions.allFinite()) return;
   // Kept when it lowers k and meets every constraint, checked on the whole problem.
   const Eigen::VectorXd x2 = onto_equalities(mp_.prog, p.free_dofs(m.positions));
@@ -112,10 +120,11 @@ void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::Matri
 
 void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol,
                                 BestSoFar& best) {
+  const auto t0 = std::chrono::steady_clock::now();
   const ActiveSetSolve b = active_set_bound(mp_.problem, chosen, X, effective_bounds_, mp_.options);
   if (mp_.options.verbose)
-    std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations)\n", b.lower_bound, b.elements,
-                 b.iterations);
+    std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations, %.3f s)\n", b.lower_bound,
+                 b.elements, b.iterations, seconds_since(t0));
   bound_ = b.lower_bound;
   if (b.lower_bound > best.lower_bound) {
     best.lower_bound = b.lower_bound;
