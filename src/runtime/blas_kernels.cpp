@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 
 namespace strictmin::runtime {
 
@@ -29,9 +30,18 @@ const char* better_openblas_core() {
   return nullptr;
 }
 
+namespace {
+// Valgrind would let the new run go unwatched (it follows an exec only when asked to) and does
+// not emulate AVX-512 anyway: there the program keeps its kernels.
+bool under_valgrind() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  return preload && std::strstr(preload, "vgpreload");
+}
+}  // namespace
+
 void rerun_with_better_blas_kernels(char** argv) {
   const char* core = better_openblas_core();
-  if (!core || !argv || !argv[0]) return;
+  if (!core || !argv || !argv[0] || under_valgrind()) return;
   if (setenv("OPENBLAS_CORETYPE", core, 1) != 0) return;
   execv("/proc/self/exe", argv);
   unsetenv("OPENBLAS_CORETYPE");  // execv failed (no /proc): go on with the generic kernels

@@ -23,7 +23,8 @@ const char* better_openblas_core();
 
 // When better_openblas_core() names a kernel set: sets OPENBLAS_CORETYPE to it and replaces
 // the process by a fresh run of the same program with the same arguments (/proc/self/exe),
-// so that OpenBLAS loads with it. Returns only when it did not re-execute. Call it first in
+// so that OpenBLAS loads with it. Returns only when it did not re-execute (also under
+// valgrind, which would not follow the new run). Call it first in
 // main(), before any output or input; argv as main() received it.
 void rerun_with_better_blas_kernels(char** argv);
 
