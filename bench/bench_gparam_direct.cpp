@@ -5,8 +5,11 @@
 //
 // Environment: STRICTMIN_DIRECT_MAX_STEPS=N (stop after N levels), STRICTMIN_DIRECT_VERBOSE_LEVEL=L
 // with STRICTMIN_LINF_VERBOSE=1|2 (the interior-point lines of level L only; every level when
-// L is unset), STRICTMIN_LINF_PENALTY=1 (the equalities by the penalty from the start),
-// STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings).
+// L is unset; these two run the levels through a level solver of the benchmark's own, which
+// turns pinning off), STRICTMIN_LINF_PENALTY=1 (the equalities by the penalty from the start),
+// STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings), STRICTMIN_GPARAM_FIELD=curvature (the
+// curvature-aligned field, --field curvature, instead of the smoothest).
+// STRICTMIN_DIRECT_NO_PIN=1: DirectOptions::pin_essential off (--no-pin).
 // Prints the levels, the time (wall and process CPU), the status and the message.
 #include <chrono>
 #include <cstdio>
@@ -41,17 +44,21 @@ int main(int argc, char** argv) {
   const Mesh mesh = read_mesh(argv[1]);
   GParamOptions o;
   o.solver.method = Method::L2;
+  if (const char* f = std::getenv("STRICTMIN_GPARAM_FIELD")) o.curvature_field = std::string(f) == "curvature";
   const GParamOutcome g = global_parametrize(mesh, o, argv[1]);
   DirectOptions direct;
   direct.delta_k = 1e-3;
   direct.k_min = 0.1;
   if (const int steps = env_int("STRICTMIN_DIRECT_MAX_STEPS", 0); steps > 0) direct.max_steps = steps;
+  direct.pin_essential = std::getenv("STRICTMIN_DIRECT_NO_PIN") == nullptr;
   direct.moving_rings = env_int("STRICTMIN_MOVING_RINGS", direct.moving_rings);
   const int verbose = env_int("STRICTMIN_LINF_VERBOSE", 0);
   const int verbose_level = env_int("STRICTMIN_DIRECT_VERBOSE_LEVEL", 0);
   const bool penalty = std::getenv("STRICTMIN_LINF_PENALTY") != nullptr;
   int level = 0;
-  direct.level_solver = [&](const Problem& p, const LinfOptions& lo, const Eigen::MatrixXd& X) {
+  // A level solver of our own (for the verbose lines and the penalty) turns pinning off
+  // (DirectOptions::level_solver): set only when asked for.
+  if (verbose || penalty) direct.level_solver = [&](const Problem& p, const LinfOptions& lo, const Eigen::MatrixXd& X) {
     ++level;
     LinfOptions l = lo;
     l.verbose = verbose_level == 0 || verbose_level == level ? verbose : 0;

@@ -28,8 +28,8 @@ struct Grid {
   Eigen::MatrixXd X;
 };
 
-Grid make_problem_grid() {
-  const Mesh mesh = make_grid(6, 6);
+Grid make_problem_grid(int cells = 6) {
+  const Mesh mesh = make_grid(cells, cells);
   Grid g{make_problem(mesh), {}};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(-0.3, 0.3), shift(-0.02, 0.02);
@@ -125,6 +125,71 @@ TEST(PinnedElements, FreeGroupsTranslateHeldGroupsStay) {
   for (int e = 0; e < p.num_elements(); ++e)
     EXPECT_NEAR(r.distortion[e], (p.jacobian(e, r.positions) - p.target(e)).norm(), 1e-9) << e;
   for (int e : star) EXPECT_EQ(r.multipliers[e], 0.0);
+}
+
+// The problem's own equalities (gparam's seams) with pinned elements: groups touching
+// their vertices translate like the others, the equalities written on the level (a member
+// outside the level's problem through its group's root), then the translation rows. Here
+// q_a - q_b = X_a - X_b with a the centre of a pinned star (outside the level's problem) and
+// b a free vertex: the level's map keeps every pinned Jacobian, moves each group by one
+// translation and meets the equality exactly, so b follows a's group.
+TEST(PinnedElements, GroupsOnTheProblemsEqualitiesTranslateAndMeetThem) {
+  const Mesh mesh = make_grid(8, 8);
+  Grid g = make_problem_grid(8);
+  Problem& p = g.p;
+  const int centre = vertex_at(mesh, 0.25, 0.25), seam_a = vertex_at(mesh, 0.75, 0.75);
+  const int seam_b = vertex_at(mesh, 0.25, 0.75);
+  ASSERT_GE(centre, 0);
+  ASSERT_GE(seam_a, 0);
+  ASSERT_GE(seam_b, 0);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < 2; ++r) {
+    t.emplace_back(r, 2 * seam_a + r, 1.0);
+    t.emplace_back(r, 2 * seam_b + r, -1.0);
+  }
+  p.eq_matrix.resize(2, 2 * p.num_vertices);
+  p.eq_matrix.setFromTriplets(t.begin(), t.end());
+  p.eq_rhs = (g.X.row(seam_a) - g.X.row(seam_b)).transpose();
+
+  PinnedElements pins(p);
+  const std::vector<int> star = elements_around(p, centre), seam_star = elements_around(p, seam_a);
+  for (int e : star) pins.pin(e);
+  for (int e : seam_star) pins.pin(e);
+  const std::vector<char> every_vertex(p.num_vertices, 1);
+  const PinnedLevel level = pins.level_problem(p, every_vertex, g.X);
+  ASSERT_EQ(level.groups.size(), 2u);
+  for (const PinnedLevel::Group& group : level.groups) EXPECT_EQ(group.outside.size(), 1u);
+  // The equality's two rows first (on a's root and b), then n rows per other member in the level.
+  const Problem& q = level.sub.problem;
+  const Eigen::Index ties = 2 * (static_cast<Eigen::Index>(star.size()) - 1 + static_cast<Eigen::Index>(seam_star.size()) - 1);
+  ASSERT_EQ(q.eq_matrix.rows(), 2 + ties);
+  const Eigen::MatrixXd A = Eigen::MatrixXd(q.eq_matrix);
+  for (Eigen::Index r = 0; r < A.rows(); ++r) EXPECT_EQ(A.row(r).cwiseAbs().sum(), 2.0) << r;
+
+  Result previous;
+  previous.positions = g.X;
+  previous.distortion = Eigen::VectorXd(p.num_elements());
+  for (int e = 0; e < p.num_elements(); ++e) previous.distortion[e] = (p.jacobian(e, g.X) - p.target(e)).norm();
+  const LevelSolver solve = [](const Problem& level_problem, const LinfOptions& o, const Eigen::MatrixXd&) {
+    return solve_linf(level_problem, o);
+  };
+  const Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  const Result r = solve_on_level(p, level, bounds, previous, LinfOptions{}, solve);
+  ASSERT_TRUE(r.ok()) << r.message;
+  Eigen::VectorXd x(2 * p.num_vertices);
+  for (int v = 0; v < p.num_vertices; ++v) x.segment<2>(2 * v) = r.positions.row(v).transpose();
+  EXPECT_LT((p.eq_matrix * x - p.eq_rhs).cwiseAbs().maxCoeff(), 1e-12);
+  for (const auto& [pinned, middle] : {std::pair{star, centre}, std::pair{seam_star, seam_a}}) {
+    const Eigen::RowVector2d moved = r.positions.row(middle) - g.X.row(middle);
+    EXPECT_GT(moved.norm(), 1e-4) << middle;  // the group did move
+    for (int e : pinned) {
+      EXPECT_LT((p.jacobian(e, r.positions) - p.jacobian(e, g.X)).norm(), 1e-9) << e;
+      for (int j = 0; j < 3; ++j) {
+        const int v = p.elements(e, j);
+        EXPECT_LT((r.positions.row(v) - g.X.row(v) - moved).norm(), 1e-9) << v;
+      }
+    }
+  }
 }
 
 // A free element whose corners all belong to held groups cannot move: the level's lower

@@ -39,9 +39,12 @@ using namespace linf_detail;
 
 
 // Step 3: the L2 map or the given positions, whichever misses the bounds less (then has the
-// lower maximum).
+// lower maximum). The L2 map ignores the equalities (or meets them by a penalty): it is moved
+// onto them first, since the iterates keep what a start misses of them to the method's
+// tolerance only (gparam's levels with pinned elements, whose programs have no bounded
+// cones left for the previous map to win by: seams to 1e-7 instead of round-off).
 Candidate choose_start(const MainProgram& mp, const socp::WeightedLeastSquares& ls) {
-  Candidate start = mp.evaluate(ls.minimizer());
+  Candidate start = mp.evaluate(onto_equalities(mp.prog, ls.minimizer()));
   const Candidate given = mp.evaluate(mp.problem.free_dofs(mp.problem.positions));
   if (given.x.allFinite() && (given.excess < start.excess || (given.excess == start.excess && given.kmax < start.kmax)))
     start = given;

@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <Eigen/SparseCholesky>
-
 #include "solvers/linf_active_set.h"
 
 namespace strictmin::linf_detail {
@@ -71,30 +69,6 @@ std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double 
   }
 }
 
-namespace {
-
-// The map keeps the iterate's held vertices, and the iterates meet the equalities only to the
-// method's feasibility tolerance while they converge from a start off them (seams 2e-9 on
-// the bulged frame, 3e-9 on cow when the map ends the solve): the least-norm move onto
-// A x = b makes the map's seams exact (to round-off) before it is measured.
-Eigen::VectorXd onto_equalities(const socp::ConeProgram& prog, Eigen::VectorXd x) {
-  if (prog.num_eq() == 0 || x.size() != prog.num_x) return x;
-  const Eigen::VectorXd residual = prog.beq - prog.A * x;
-  if (residual.cwiseAbs().maxCoeff() == 0) return x;
-  const Eigen::SparseMatrix<double> A = prog.A;
-  Eigen::SparseMatrix<double> aat = Eigen::SparseMatrix<double>(A * A.transpose());
-  double largest = 0;
-  for (int r = 0; r < aat.rows(); ++r) largest = std::max(largest, aat.coeff(r, r));
-  if (!(largest > 0)) return x;
-  for (int r = 0; r < aat.rows(); ++r) aat.coeffRef(r, r) += 1e-13 * largest;  // redundant rows
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(aat);
-  if (ldlt.info() != Eigen::Success) return x;
-  const Eigen::VectorXd move = A.transpose() * ldlt.solve(residual);
-  if (move.allFinite()) x += move;
-  return x;
-}
-
-}  // namespace
 
 void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) {
   ++maps_;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/SparseCholesky>
+
 namespace strictmin::linf_detail {
 
 std::string format(double v) {
@@ -109,6 +111,23 @@ double MainProgram::bound_scale() const {
   double scale = 1.0;
   for (int i = num_free_cones; i < prog.num_element_cones(); ++i) scale = std::max(scale, prog.head_b[i]);
   return scale;
+}
+
+Eigen::VectorXd onto_equalities(const socp::ConeProgram& prog, Eigen::VectorXd x) {
+  if (prog.num_eq() == 0 || x.size() != prog.num_x) return x;
+  const Eigen::VectorXd residual = prog.beq - prog.A * x;
+  if (residual.cwiseAbs().maxCoeff() == 0) return x;
+  const Eigen::SparseMatrix<double> A = prog.A;
+  Eigen::SparseMatrix<double> aat = Eigen::SparseMatrix<double>(A * A.transpose());
+  double largest = 0;
+  for (int r = 0; r < aat.rows(); ++r) largest = std::max(largest, aat.coeff(r, r));
+  if (!(largest > 0)) return x;
+  for (int r = 0; r < aat.rows(); ++r) aat.coeffRef(r, r) += 1e-13 * largest;  // redundant rows
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(aat);
+  if (ldlt.info() != Eigen::Success) return x;
+  const Eigen::VectorXd move = A.transpose() * ldlt.solve(residual);
+  if (move.allFinite()) x += move;
+  return x;
 }
 
 }  // namespace strictmin::linf_detail

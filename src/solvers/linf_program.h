@@ -67,4 +67,10 @@ struct MainProgram {
   double bound_scale() const;
 };
 
+// x moved onto the program's equalities A x = b by the least-norm step (to round-off), or x
+// itself when they hold exactly, when there are none, or when A A^T cannot be factored. The
+// interior-point iterates keep A x = b only to the method's feasibility tolerance when they
+// start off it (the steps stay in the null space once on it).
+Eigen::VectorXd onto_equalities(const socp::ConeProgram& prog, Eigen::VectorXd x);
+
 }  // namespace strictmin::linf_detail

@@ -116,7 +116,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   Problem level = p;
   // Pinning needs the field deviation's strict convexity (not the local-global or frame
   // levels' measures) and no equalities of the problem's own.
-  const bool pinning = options.pin_essential && !options.level_solver && !p.has_equalities();
+  const bool pinning = options.pin_essential && !options.level_solver;
   PinnedElements pins(p);
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     check_interrupt();  // solvers/interrupt.h

@@ -109,10 +109,52 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
         }
   }
   Problem& s = out.sub.problem;
+  if (p.has_equalities()) {
+    // The problem's own equalities (gparam's seams) on the level: a member of a free group
+    // outside the sub-problem moves with its group's root (q_v = q_root + X_v - X_root), a
+    // vertex neither inside nor in a free group stays at X. Rows with nothing left to move go;
+    // rows that the translations make redundant stay (the null space drops them, null_space.h).
+    std::vector<int> root_of(V, -1);
+    for (const PinnedLevel::Group& group : out.groups)
+      if (group.root >= 0)
+        for (int v : group.outside) root_of[v] = group.root;
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
+    std::vector<Eigen::Triplet<double>> own;
+    std::vector<double> own_rhs;
+    for (int row = 0; row < A.rows(); ++row) {
+      double b = p.eq_rhs[row];
+      std::vector<Eigen::Triplet<double>> kept_terms;
+      bool moves = false;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it; ++it) {
+        const int v = static_cast<int>(it.col()) / n, r = static_cast<int>(it.col()) % n;
+        const int w = local[v] >= 0 ? v : root_of[v];
+        if (w < 0) {
+          b -= it.value() * X(v, r);
+          continue;
+        }
+        if (w != v) b -= it.value() * (X(v, r) - X(w, r));
+        kept_terms.emplace_back(static_cast<int>(own_rhs.size()), local[w] * n + r, it.value());
+        moves = moves || !s.fixed[local[w]];
+      }
+      if (!moves) continue;
+      own.insert(own.end(), kept_terms.begin(), kept_terms.end());
+      own_rhs.push_back(b);
+    }
+    // Own rows first, the translation rows after them.
+    const int m = static_cast<int>(own_rhs.size());
+    for (auto& t : triplets) t = Eigen::Triplet<double>(t.row() + m, t.col(), t.value());
+    triplets.insert(triplets.end(), own.begin(), own.end());
+    own_rhs.insert(own_rhs.end(), rhs.begin(), rhs.end());
+    rhs = std::move(own_rhs);
+  }
   if (!rhs.empty()) {
     s.eq_matrix.resize(static_cast<Eigen::Index>(rhs.size()), static_cast<Eigen::Index>(s.num_vertices) * n);
     s.eq_matrix.setFromTriplets(triplets.begin(), triplets.end());
+    s.eq_matrix.prune(0.0);  // coefficients that cancel (two corners on one root)
     s.eq_rhs = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
+  } else if (p.has_equalities()) {
+    s.eq_matrix.resize(0, static_cast<Eigen::Index>(s.num_vertices) * n);
+    s.eq_rhs.resize(0);
   }
   return out;
 }
