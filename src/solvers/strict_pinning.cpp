@@ -113,7 +113,8 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
     // The problem's own equalities (gparam's seams) on the level: a member of a free group
     // outside the sub-problem moves with its group's root (q_v = q_root + X_v - X_root), a
     // vertex neither inside nor in a free group stays at X. Rows with nothing left to move go;
-    // rows that the translations make redundant stay (the null space drops them, null_space.h).
+    // rows that the translations make redundant but not empty stay (the null space drops
+    // them, null_space.h).
     std::vector<int> root_of(V, -1);
     for (const PinnedLevel::Group& group : out.groups)
       if (group.root >= 0)
@@ -121,10 +122,10 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
     const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
     std::vector<Eigen::Triplet<double>> own;
     std::vector<double> own_rhs;
+    std::vector<std::pair<int, double>> terms;  // (level column, coefficient) of one row
     for (int row = 0; row < A.rows(); ++row) {
       double b = p.eq_rhs[row];
-      std::vector<Eigen::Triplet<double>> kept_terms;
-      bool moves = false;
+      terms.clear();
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, row); it; ++it) {
         const int v = static_cast<int>(it.col()) / n, r = static_cast<int>(it.col()) % n;
         const int w = local[v] >= 0 ? v : root_of[v];
@@ -133,11 +134,21 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
           continue;
         }
         if (w != v) b -= it.value() * (X(v, r) - X(w, r));
-        kept_terms.emplace_back(static_cast<int>(own_rhs.size()), local[w] * n + r, it.value());
-        moves = moves || !s.fixed[local[w]];
+        terms.emplace_back(local[w] * n + r, it.value());
       }
+      // Two corners on one root add up; a seam edge inside one group on both sides cancels.
+      std::sort(terms.begin(), terms.end());
+      std::vector<std::pair<int, double>> merged;
+      for (const auto& [column, value] : terms)
+        if (!merged.empty() && merged.back().first == column)
+          merged.back().second += value;
+        else
+          merged.emplace_back(column, value);
+      bool moves = false;
+      for (const auto& [column, value] : merged) moves = moves || (value != 0 && !s.fixed[column / n]);
       if (!moves) continue;
-      own.insert(own.end(), kept_terms.begin(), kept_terms.end());
+      for (const auto& [column, value] : merged)
+        if (value != 0) own.emplace_back(static_cast<int>(own_rhs.size()), column, value);
       own_rhs.push_back(b);
     }
     // Own rows first, the translation rows after them.
@@ -150,7 +161,6 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
   if (!rhs.empty()) {
     s.eq_matrix.resize(static_cast<Eigen::Index>(rhs.size()), static_cast<Eigen::Index>(s.num_vertices) * n);
     s.eq_matrix.setFromTriplets(triplets.begin(), triplets.end());
-    s.eq_matrix.prune(0.0);  // coefficients that cancel (two corners on one root)
     s.eq_rhs = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
   } else if (p.has_equalities()) {
     s.eq_matrix.resize(0, static_cast<Eigen::Index>(s.num_vertices) * n);

@@ -51,8 +51,8 @@ struct DirectOptions {
   int moving_rings = 2;
   // Pin the essential elements (certificate multiplier >= pin_threshold) after each level:
   // they leave the later levels' programs and their Jacobians are held (docs/strict.md,
-  // "Pinned elements"). Only with the field deviation through solve_linf (no level_solver)
-  // and on problems without equalities; elsewhere ignored.
+  // "Pinned elements"). Only with the field deviation through solve_linf (no level_solver),
+  // on problems with equalities (gparam's seams) too; elsewhere ignored.
   bool pin_essential = true;
   double pin_threshold = 1e-4;
   std::function<void(const StrictStep&)> progress;
