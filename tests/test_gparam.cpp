@@ -366,7 +366,9 @@ TEST(SharedMeshes, DirectPinsOnTheSeams) {
   ASSERT_TRUE(g.result.usable()) << g.result.message;
   EXPECT_EQ(g.result.iterations, 25) << g.result.message;
   EXPECT_EQ(g.result.message.find("stopped short"), std::string::npos) << g.result.message;
-  EXPECT_LT(g.seam_error, 1e-9);
+  // Round-off (measured 7e-16 at every level): with the L2 start off the seams they were 2e-10
+  // after these 25 levels, and 1e-7 after all of cow's levels with the smoothest field.
+  EXPECT_LT(g.seam_error, 1e-12);
   EXPECT_GT(pinned, 100);
   ASSERT_EQ(g.result.history.size(), 25u);
   for (size_t i = 1; i < g.result.history.size(); ++i) {
