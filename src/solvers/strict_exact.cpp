@@ -35,8 +35,9 @@
 
 namespace strictmin {
 namespace {
-// A test solve decides its test when its certified gap is at most this fraction of the
-// tolerance (its own criterion, a relative gap of 1e-8, is far finer than the test needs).
+// A solve (a level's after the first, or a test's) that stopped short of its own criterion (a
+// relative gap of 1e-8) still decides when its certified gap is at most this fraction of the
+// tolerance: far finer than the decisions, which compare values with k - tol, need.
 constexpr double kDecidingGap = 1e-2;
 }  // namespace
 
