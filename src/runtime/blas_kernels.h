@@ -1,7 +1,7 @@
 // The dense kernels under CHOLMOD's supernodal factorizations.
 //
 // Debian 12's OpenBLAS (0.3.21) picks its kernels from the processor's model number. On a
-// model it does not know (e.g. Intel Sapphire Rapids) it falls back to its generic Prescott
+// model it does not know (e.g. a Xeon with AVX-512 FP16) it falls back to its generic Prescott
 // (SSE3) kernels, which run the dense blocks of our factorizations at about half speed
 // (docs/performance.md, section 1). OPENBLAS_CORETYPE, read when OpenBLAS loads, overrides the
 // choice. These functions find that case and set it for the programs of the project.
