@@ -52,6 +52,19 @@ int vertex_at(const Mesh& mesh, double x, double y) {
   return -1;
 }
 
+// The level's problem solved by solve_linf from the map X, every element free (no bounds).
+Result solve_free_level(const Problem& p, const PinnedLevel& level, const Eigen::MatrixXd& X) {
+  Result previous;
+  previous.positions = X;
+  previous.distortion = Eigen::VectorXd(p.num_elements());
+  for (int e = 0; e < p.num_elements(); ++e) previous.distortion[e] = (p.jacobian(e, X) - p.target(e)).norm();
+  const LevelSolver solve = [](const Problem& level_problem, const LinfOptions& o, const Eigen::MatrixXd&) {
+    return solve_linf(level_problem, o);
+  };
+  const Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  return solve_on_level(p, level, bounds, previous, LinfOptions{}, solve);
+}
+
 std::vector<int> elements_around(const Problem& p, int v) {
   std::vector<int> around;
   for (int e = 0; e < p.num_elements(); ++e)
@@ -98,15 +111,7 @@ TEST(PinnedElements, FreeGroupsTranslateHeldGroupsStay) {
       }
     }
 
-  Result previous;
-  previous.positions = g.X;
-  previous.distortion = Eigen::VectorXd(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) previous.distortion[e] = (p.jacobian(e, g.X) - p.target(e)).norm();
-  const LevelSolver solve = [](const Problem& level_problem, const LinfOptions& o, const Eigen::MatrixXd&) {
-    return solve_linf(level_problem, o);
-  };
-  const Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
-  const Result r = solve_on_level(p, level, bounds, previous, LinfOptions{}, solve);
+  const Result r = solve_free_level(p, level, g.X);
   ASSERT_TRUE(r.ok()) << r.message;
   for (int e : star) EXPECT_LT((p.jacobian(e, r.positions) - p.jacobian(e, g.X)).norm(), 1e-9) << e;
   for (int j = 0; j < 3; ++j) {
@@ -166,15 +171,7 @@ TEST(PinnedElements, GroupsOnTheProblemsEqualitiesTranslateAndMeetThem) {
   const Eigen::MatrixXd A = Eigen::MatrixXd(q.eq_matrix);
   for (Eigen::Index r = 0; r < A.rows(); ++r) EXPECT_EQ(A.row(r).cwiseAbs().sum(), 2.0) << r;
 
-  Result previous;
-  previous.positions = g.X;
-  previous.distortion = Eigen::VectorXd(p.num_elements());
-  for (int e = 0; e < p.num_elements(); ++e) previous.distortion[e] = (p.jacobian(e, g.X) - p.target(e)).norm();
-  const LevelSolver solve = [](const Problem& level_problem, const LinfOptions& o, const Eigen::MatrixXd&) {
-    return solve_linf(level_problem, o);
-  };
-  const Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
-  const Result r = solve_on_level(p, level, bounds, previous, LinfOptions{}, solve);
+  const Result r = solve_free_level(p, level, g.X);
   ASSERT_TRUE(r.ok()) << r.message;
   Eigen::VectorXd x(2 * p.num_vertices);
   for (int v = 0; v < p.num_vertices; ++v) x.segment<2>(2 * v) = r.positions.row(v).transpose();

@@ -115,7 +115,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   out.positions = p.positions;
   Problem level = p;
   // Pinning needs the field deviation's strict convexity (not the local-global or frame
-  // levels' measures) and no equalities of the problem's own.
+  // levels' measures); the problem's own equalities (seams) are written on each level.
   const bool pinning = options.pin_essential && !options.level_solver;
   PinnedElements pins(p);
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {

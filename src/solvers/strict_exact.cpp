@@ -79,17 +79,16 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   auto level_problem = [&](const Result& from) {
     return pins.count() == 0 ? std::optional<PinnedLevel>() : pins.level_problem(p, every_vertex, from.positions);
   };
+  // Unpinned solves run from the map in hand, which meets every fixed bound: the problem's
+  // own start (the first map) misses the new ones and would need a phase 1 (which on seamed
+  // problems declared the bulged frame's second level infeasible). One copy, its start reset.
+  Problem from_map = p;
   auto solve = [&](const std::optional<PinnedLevel>& level, const Eigen::VectorXd& element_bounds,
                    const Result& from) {
     if (!level) {
       linf.element_bounds = element_bounds;
-      if (from.positions.rows() != p.num_vertices) return solve_linf(p, linf);
-      // From the map in hand, which meets every fixed bound: the problem's own start (the
-      // first map) misses the new ones and would need a phase 1 (which on seamed problems
-      // declared the bulged frame's second level infeasible).
-      Problem q = p;
-      q.positions = from.positions;
-      return solve_linf(q, linf);
+      from_map.positions = from.positions.rows() == p.num_vertices ? from.positions : p.positions;
+      return solve_linf(from_map, linf);
     }
     return solve_on_level(p, *level, element_bounds, from, linf, plain);
   };
