@@ -1,4 +1,4 @@
-// strictmin gparam MESH -o OUT.obj [--field smoothest|FILE] [--field-out FILE]
+// strictmin gparam MESH -o OUT.obj [--field smoothest|unit|curvature|FILE] [--field-out FILE]
 //   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
 #include <chrono>
 #include <cmath>
@@ -43,10 +43,11 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (a.edge_length_given) o.edge_length = a.edge_length;
   if (a.quads_given) o.quads = a.quads;
   o.curvature_field = a.field == "curvature";
+  o.field_options.unit = a.field == "unit";
   if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
     throw InputError("--curvature-alignment must be a positive number, got " + std::to_string(a.curvature_alignment));
   o.curvature_alignment = a.curvature_alignment;
-  if (a.field != "smoothest" && a.field != "curvature") {
+  if (a.field != "smoothest" && a.field != "curvature" && a.field != "unit") {
     o.field = read_field_file(a.field, mesh.num_elements());
     o.field_source = a.field;
   }
@@ -99,8 +100,9 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("mesh", args->mesh, "Input closed surface (.obj/.off triangles, one component, any genus)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, vt per cut-mesh vertex, f v/vt");
   cmd->add_option("--field", args->field,
-                  "smoothest (default: Knoeppel et al. 2013), curvature (principal directions, smoothed) or a file with one 3D "
-                  "direction per face per line")
+                  "smoothest (default: Knoeppel et al. 2013), unit (the smoothest field lowered among unit fields: "
+                  "smoother, fewer singularities, lower distortion; slower), curvature (principal directions, smoothed) or a "
+                  "file with one 3D direction per face per line")
       ->capture_default_str();
   cmd->add_option("--curvature-alignment", args->curvature_alignment,
                   "--field curvature: how closely the field follows the principal directions (smaller: smoother)")

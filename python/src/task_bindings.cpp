@@ -151,7 +151,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   return out;
 }
 
-// field_name: "smoothest", "curvature" or "given" (then `directions`, #F by 3).
+// field_name: "smoothest", "unit", "curvature" or "given" (then `directions`, #F by 3).
 // edge_length / quads: None for the default (about 1000 unit squares).
 py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string& method, const std::string& measure,
                    const std::string& field_name, const std::optional<RowMatrixXd>& directions,
@@ -173,9 +173,10 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   if (!(curvature_alignment > 0 && std::isfinite(curvature_alignment)))
     throw InputError("curvature_alignment must be a positive number, got " + std::to_string(curvature_alignment));
   options.curvature_alignment = curvature_alignment;
-  if (field_name != "smoothest" && field_name != "curvature" && field_name != "given")
-    throw InputError("field takes 'smoothest', 'curvature' or a #F by 3 array of directions, not '" + field_name + "'");
+  if (field_name != "smoothest" && field_name != "unit" && field_name != "curvature" && field_name != "given")
+    throw InputError("field takes 'smoothest', 'unit', 'curvature' or a #F by 3 array of directions, not '" + field_name + "'");
   options.curvature_field = field_name == "curvature";
+  options.field_options.unit = field_name == "unit";
   const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
   if (field_name == "given") {
     if (!directions) throw InputError("field: no directions given");

@@ -189,7 +189,8 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     """Globally parametrize a closed manifold triangle surface (one component, any genus)
     guided by a cross field, with seams as linear constraints (the paper's Appendix A;
     docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
-    field) or arap; field: None or "smoothest", "curvature", or #F by 3 directions;
+    field) or arap; field: None or "smoothest", "unit" (the smoothest field lowered among unit fields),
+    "curvature", or #F by 3 directions;
     edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
     squares (default 1000). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
@@ -203,14 +204,14 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     elif not isinstance(field, str):
         directions = np.asarray(field)
         if directions.dtype.kind not in "fiu":
-            raise ValueError(f"field must be 'smoothest', 'curvature' or #F by 3 directions, "
+            raise ValueError(f"field must be 'smoothest', 'unit', 'curvature' or #F by 3 directions, "
                              f"got dtype {directions.dtype}")
         directions = np.ascontiguousarray(directions, dtype=np.float64)
         if directions.ndim != 2 or directions.shape[1] != 3:
             raise ValueError(f"field directions must be #F by 3, got shape {directions.shape}")
         field = "given"
     elif field == "given":
-        raise ValueError("field takes 'smoothest', 'curvature' or a #F by 3 array of directions, not 'given'")
+        raise ValueError("field takes 'smoothest', 'unit', 'curvature' or a #F by 3 array of directions, not 'given'")
     if edge_length is not None:
         if isinstance(edge_length, (bool, str)) or not isinstance(edge_length, numbers.Real):
             raise TypeError("edge_length must be a number")

@@ -15,6 +15,7 @@
 #include "field/lanczos.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/timing.h"
+#include "solvers/option_check.h"
 #include "solvers/serial_cholmod_scope.h"
 
 namespace strictmin {
@@ -109,7 +110,52 @@ void pin_phase(Eigen::VectorXcd& u, int f, const Eigen::Vector3d& d, const FaceF
   u *= std::polar(1.0, 4.0 * a) / u(f);
 }
 
+// CrossFieldOptions::unit: from the normalized eigenvector u, steps of
+// u <- normalize((E + s M)^-1 s M u) (E + s M factored in the cholesky that held E + eps M:
+// the same pattern, so its analysis is kept); returns the field of least E met.
+void lower_among_unit_fields(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
+                             const CrossFieldOptions& options, HermitianLower& A, double eps,
+                             HermitianCholesky& cholesky, CrossField& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int F = g.num_faces;
+  const double s = options.unit_diffusion * (trace(A) - eps * fr.area.sum()) / fr.area.sum();
+  for (int f = 0; f < F; ++f) A.value[A.start[f]] += (s - eps) * fr.area(f);
+  if (!cholesky.factorize(A)) throw InputError("cross field: the unit field's diffusion system could not be factorized");
+  cholesky.compact_for_solves();
+  const Eigen::VectorXcd sM = s * fr.area.cast<Complex>();
+  Eigen::VectorXcd u = out.u;
+  double best = out.energy;
+  int since_progress = 0;
+  for (int step = 1; step <= options.unit_max_steps && since_progress < options.unit_patience; ++step) {
+    u = u.cwiseProduct(sM);
+    cholesky.solve_in_place(u);
+    u = normalize_per_face(u);
+    const double energy = field_energy(u, mesh, g, fr);
+    out.unit_steps = step;
+    ++since_progress;
+    if (energy < best) {
+      if (energy < (1.0 - options.unit_progress) * best) since_progress = 0;
+      best = energy;
+      out.u = u;
+    }
+  }
+  out.energy = best;
+  out.timing.unit_s = seconds_since(t0);
+}
+
 }  // namespace
+
+bool CrossFieldOptions::is_valid(std::string* why) const {
+  OptionCheck check(why);
+  check.at_least("max_iterations", max_iterations, 1)
+      .positive("tolerance", tolerance)
+      .positive("unit_diffusion", unit_diffusion)
+      .at_least("unit_max_steps", unit_max_steps, 0)
+      .at_least("unit_patience", unit_patience, 1)
+      .non_negative("unit_progress", unit_progress)
+      .that(pin_direction.allFinite(), "pin_direction must be finite");
+  return check.ok();
+}
 
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
   FaceFrames fr;
@@ -149,6 +195,8 @@ double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGr
 
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
                                  const CrossFieldOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("cross field options: " + why);
   const int F = g.num_faces;
   auto t0 = std::chrono::steady_clock::now();
   HermitianLower A = hermitian_energy(mesh, g, fr, Eigen::VectorXd::Zero(F));
@@ -176,8 +224,9 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   out.iterations = eigen.steps;
   out.residual = eigen.residual;
   out.u = normalize_per_face(eigen.vector);
+  out.energy = out.eigen_energy = field_energy(out.u, mesh, g, fr);
+  if (options.unit) lower_among_unit_fields(mesh, g, fr, options, A, eps, cholesky, out);
   if (options.pin_face >= 0 && options.pin_face < F) pin_phase(out.u, options.pin_face, options.pin_direction, fr);
-  out.energy = field_energy(out.u, mesh, g, fr);
   return out;
 }
 

@@ -167,6 +167,10 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["graph_time_s"] = g.graph_time_s;
   s["field_time_s"] = g.field_time_s;
   s["field_iterations"] = g.field.iterations;
+  if (o.field_options.unit && !o.field && !o.curvature_field) {
+    s["field_unit_steps"] = g.field.unit_steps;
+    s["field_eigen_energy"] = g.field.eigen_energy;
+  }
   s["cut_time_s"] = g.cut_time_s;
   s["solver_time_s"] = g.solve_time_s;
   return s;

@@ -26,6 +26,8 @@ void check_options(const GParamOptions& o) {
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
+  std::string why;
+  if (!o.field_options.is_valid(&why)) throw InputError("field options: " + why);
 }
 
 void say(const GParamOptions& o, const std::string& line) {
@@ -55,10 +57,15 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   out.field_time_s = seconds_from(t0);
   const CrossFieldTiming& t = out.field.timing;
   std::string split;
+  const bool unit = !o.field && !o.curvature_field && o.field_options.unit;
   if (!o.field)
     split = " (assemble " + fixed(t.assemble_s) + ", analyse " + fixed(t.analyze_s) + ", factorize " + fixed(t.factorize_s) +
-            (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) + ")";
-  say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
+            (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) +
+            (unit ? ", " + std::to_string(out.field.unit_steps) + " unit steps " + fixed(t.unit_s) + " from energy " +
+                        std::to_string(out.field.eigen_energy)
+                  : std::string()) +
+            ")";
+  say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : unit ? "unit" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }
 

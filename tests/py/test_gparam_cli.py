@@ -122,6 +122,19 @@ class GParam(unittest.TestCase):
         self.assertEqual(s["singularities"], 8)
         self.assertLess(s["max_distortion"], 1e-6)  # the cube's edges are its principal directions
 
+    def test_unit_field(self):
+        """--field unit: the smoothest field lowered among unit fields; the cube's axis-aligned
+        field (zero energy) is kept, with its eight corners and no distortion."""
+        s = self.gparam(self.cube, "--field", "unit")
+        self.assertEqual(s["field"], "unit")
+        self.assertEqual(s["singularities"], 8)
+        self.assertGreaterEqual(s["field_unit_steps"], 1)
+        self.assertLessEqual(s["field_energy"], s["field_eigen_energy"])
+        self.assertLess(s["field_energy"], 1e-9)
+        self.assertLess(s["max_distortion"], 1e-6)
+        p = run("gparam", self.cube, "-o", self.out("u.obj"), "--field", "unit", check_code=0)
+        self.assertRegex(p.stderr, r"field: unit, .* unit steps")
+
     def test_quads_sets_the_edge_length(self):
         s = self.gparam(self.cube, "--quads", "96")
         # area 6 * 2^2 = 24, 96 squares: h = 0.5

@@ -49,12 +49,16 @@ def test_matches_cli_arap_given_field(tmp_path, closed):
 
 def test_poincare_hopf(closed):
     _, V, F = closed
-    for field in ("smoothest", "curvature"):
+    for field in ("smoothest", "unit", "curvature"):
         r = strictmin.gparam(V, F, field=field, quads=60)
         assert r.euler_characteristic == 2 == len(V) - len(F) * 3 // 2 + len(F)
         assert r.singularities and all(q != 0 for _, q in r.singularities)
         assert sum(q for _, q in r.singularities) == 4 * r.euler_characteristic
         assert r.summary["singularities"] == len(r.singularities)
+        assert r.summary["field"] == field
+        if field == "unit":
+            assert r.summary["field_unit_steps"] >= 1
+            assert r.summary["field_energy"] <= r.summary["field_eigen_energy"]
 
 
 def test_progress_records(closed):

@@ -31,13 +31,15 @@ FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& graph);
 
 // Wall seconds of a computed field's phases (0 for a given field).
 struct CrossFieldTiming {
-  double assemble_s = 0, analyze_s = 0, factorize_s = 0, iterate_s = 0;
+  double assemble_s = 0, analyze_s = 0, factorize_s = 0, iterate_s = 0, unit_s = 0;
 };
 
 struct CrossField {
   Eigen::VectorXcd u;   // #F, |u_f| = 1: the fourth power of any of the face's four directions
   double energy = 0;    // E(u) above
   int iterations = 0;   // solves with the factorization (Lanczos steps; 0 for a given field)
+  int unit_steps = 0;   // diffusion-and-normalize steps after them (CrossFieldOptions::unit)
+  double eigen_energy = 0;  // E of the normalized eigenvector, before those steps
   double residual = 0;  // the smoothest field's relative eigen-residual at the end (see below)
   CrossFieldTiming timing;
 };
@@ -53,11 +55,28 @@ struct CrossFieldOptions {
   // has a direction along pin_direction (projected into its plane). -1: no pinning.
   int pin_face = -1;
   Eigen::Vector3d pin_direction = Eigen::Vector3d::UnitX();
+  // The smoothest *unit* field (`--field unit`): the normalized eigenvector is not the unit
+  // field of least E (normalizing per face raises E most where the eigenvector is small, and
+  // leaves close pairs of opposite singularities there). Starting from it, steps of implicit
+  // diffusion and normalization,
+  //   u <- normalize((E + s M)^-1 s M u),  s = unit_diffusion * trace(E) / trace(M)
+  // (a Merriman-Bence-Osher scheme for unit fields), lower E and let such pairs annihilate;
+  // the field of least E met is kept. They stop when unit_patience steps in a row have not
+  // lowered the least E by a fraction unit_progress, or after unit_max_steps. One more
+  // factorization (the same pattern, so no new analysis), one solve a step.
+  bool unit = false;
+  double unit_diffusion = 0.1;
+  int unit_max_steps = 200;
+  int unit_patience = 10;
+  double unit_progress = 1e-3;
+  // True when valid; otherwise *why says which option and why (InputError in the functions).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
-// The smoothest unit field (Knoeppel et al. 2013): the eigenvector of the smallest eigenvalue
+// The smoothest field (Knoeppel et al. 2013): the eigenvector of the smallest eigenvalue
 // of E against the area mass, by Lanczos on (E + eps M)^-1 M with one sparse Cholesky
-// factorization of the complex Hermitian (E + eps M), normalized per face.
+// factorization of the complex Hermitian (E + eps M), normalized per face; with
+// options.unit, then lowered among unit fields (see CrossFieldOptions::unit).
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
                                  const CrossFieldOptions& options = {});
 
