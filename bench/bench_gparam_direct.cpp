@@ -7,8 +7,8 @@
 // with STRICTMIN_LINF_VERBOSE=1|2 (the interior-point lines of level L only; every level when
 // L is unset; these two run the levels through a level solver of the benchmark's own, which
 // turns pinning off), STRICTMIN_LINF_PENALTY=1 (the equalities by the penalty from the start),
-// STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings), STRICTMIN_GPARAM_FIELD=curvature (the
-// curvature-aligned field, --field curvature, instead of the smoothest).
+// STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings), STRICTMIN_GPARAM_FIELD=curvature|unit (the
+// curvature-aligned field, --field curvature, or the unit field, --field unit, instead of the smoothest).
 // STRICTMIN_DIRECT_NO_PIN=1: DirectOptions::pin_essential off (--no-pin).
 // Prints the levels, the time (wall and process CPU), the status and the message.
 #include <chrono>
@@ -44,7 +44,10 @@ int main(int argc, char** argv) {
   const Mesh mesh = read_mesh(argv[1]);
   GParamOptions o;
   o.solver.method = Method::L2;
-  if (const char* f = std::getenv("STRICTMIN_GPARAM_FIELD")) o.curvature_field = std::string(f) == "curvature";
+  if (const char* f = std::getenv("STRICTMIN_GPARAM_FIELD")) {
+    o.curvature_field = std::string(f) == "curvature";
+    o.field_options.unit = std::string(f) == "unit";
+  }
   const GParamOutcome g = global_parametrize(mesh, o, argv[1]);
   DirectOptions direct;
   direct.delta_k = 1e-3;

@@ -226,19 +226,27 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   // mesh, and bounds widened to exactly those values) keeps its place, the bounds widened by
   // that excess instead; a phase 1 from such a start ends no closer and costs a solve.
   double widened = 0;
+  std::string phase1_note;
   if (!cls.bounded_elements.empty() && start.excess > 0 && start.excess <= 1e-12 * mp.bound_scale()) {
     widened = start.excess;
   } else if (!cls.bounded_elements.empty() && start.excess > 0) {
     analysis.wait();
     const Phase1 ph = run_phase1(p, cls, bounds, p.with_free_dofs(start.x), options);
     result.iterations += ph.iterations;
-    if (!ph.feasible) {
+    if (ph.feasible) {
+      start = mp.evaluate(p.free_dofs(ph.X));
+      widened = std::max(0.0, start.excess);
+    } else if (ph.restricted) {
+      // Undecided only because phase 1 held the seam partners: the main method starts from
+      // the map that misses the bounds instead (its bounded cones' heads raised, a primal
+      // residual it removes), moving every vertex; its maps count once they meet them.
+      phase1_note = "phase 1 could not meet the fixed bounds with the vertices outside the bounded elements held "
+                    "(the equalities tie some to them); the main solve started from a map that misses them";
+    } else {
       result.status = ph.certified ? SolveStatus::Infeasible : SolveStatus::NumericalError;
       result.message = ph.message;
       return finish(ph.X);
     }
-    start = mp.evaluate(p.free_dofs(ph.X));
-    widened = std::max(0.0, start.excess);
   }
   if (widened > 0) mp.widen_bounds(widened);
   if (!mp.has_k) {
@@ -291,6 +299,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   // the widening) is the map.
   decide(ms, options, widened, result);
   if (!fallback_note.empty()) result.message += "; " + fallback_note;
+  if (!phase1_note.empty()) result.message += "; " + phase1_note;
   Eigen::MatrixXd X = p.with_free_dofs(std::isfinite(best.k) ? best.x : start.x);
 
   // 7. The least L2 map among the optima.

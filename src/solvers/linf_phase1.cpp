@@ -10,6 +10,23 @@
 namespace strictmin::linf_detail {
 namespace {
 
+// Whether an equality row couples a moving vertex (vertex_dof >= 0) with a vertex that is
+// held although it is not fixed (outside the bounded elements).
+bool equalities_tie_held_vertices(const Problem& p, const std::vector<int>& vertex_dof) {
+  if (!p.has_equalities()) return false;
+  const int n = p.image_dim;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = p.eq_matrix;
+  for (Eigen::Index r = 0; r < rows.outerSize(); ++r) {
+    bool moving = false, held = false;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it) {
+      const int v = static_cast<int>(it.col()) / n;
+      if (vertex_dof[v] >= 0) moving = true;
+      else if (!p.fixed[v]) held = true;
+    }
+    if (moving && held) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -76,7 +93,13 @@ Phase1 run_phase1(const Problem& p, const socp::ElementClasses& cls, const Eigen
   out.X = X0;
   for (int v = 0; v < p.num_vertices; ++v)
     if (vertex_dof[v] >= 0) out.X.row(v) = best_x.segment(vertex_dof[v], n).transpose();
-  if (best_lb > tol) {  // certified: every map misses some bound by more than tol
+  out.restricted = equalities_tie_held_vertices(p, vertex_dof);
+  if (best_lb > tol && out.restricted) {
+    out.feasible = false;
+    out.message = "could not decide whether the fixed bounds can be met: phase 1 holds the vertices outside the "
+                  "bounded elements, and the equalities tie some of them to its vertices (under that restriction "
+                  "some bound is missed by at least " + format(best_lb) + ")";
+  } else if (best_lb > tol) {  // certified: every map misses some bound by more than tol
     out.feasible = false;
     out.certified = true;
     out.message = "the fixed bounds cannot all be met: some bounded element exceeds its bound k_T by at least " +
