@@ -236,10 +236,11 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
     if (ph.feasible) {
       start = mp.evaluate(p.free_dofs(ph.X));
       widened = std::max(0.0, start.excess);
-    } else if (ph.restricted) {
+    } else if (ph.restricted && mp.has_k) {
       // Undecided only because phase 1 held the seam partners: the main method starts from
       // the map that misses the bounds instead (its bounded cones' heads raised, a primal
       // residual it removes), moving every vertex; its maps count once they meet them.
+      // (Without a free element there is no main method to do that: undecided.)
       phase1_note = "phase 1 could not meet the fixed bounds with the vertices outside the bounded elements held "
                     "(the equalities tie some to them); the main solve started from a map that misses them";
     } else {
