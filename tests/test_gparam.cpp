@@ -494,11 +494,13 @@ TEST(SharedMeshes, DirectPinsOnTheSeams) {
 }
 
 // Relabelled vertices and a rigid motion change no figure beyond solver tolerance; scaling
-// the mesh and the edge length by s gives the same map (the same figures).
-TEST(SharedMeshes, Invariance) {
+// the mesh and the edge length by s gives the same map (the same figures). For the smoothest
+// field and for the unit field (its steps and its energy too).
+void expect_invariance(bool unit_field) {
   const Mesh* cow = small_closed_mesh("cow");
   if (!cow) GTEST_SKIP() << "no closed/cow.obj under " << STRICTMIN_SHARED_DATA;
   GParamOptions o;
+  o.field_options.unit = unit_field;
   o.edge_length = 0.05;
   const GParamOutcome a = global_parametrize(*cow, o);
 
@@ -512,6 +514,8 @@ TEST(SharedMeshes, Invariance) {
     for (int i = 0; i < 3; ++i) moved.F(f, i) = perm[cow->F(f, i)];
   const GParamOutcome b = global_parametrize(moved, o);
   EXPECT_EQ(a.singular.size(), b.singular.size());
+  EXPECT_NEAR(a.field.energy, b.field.energy, 1e-9 * a.field.energy);
+  EXPECT_EQ(a.field.unit_steps, b.field.unit_steps);
   EXPECT_NEAR(a.measured.stats.max, b.measured.stats.max, 1e-6);
   EXPECT_NEAR(a.measured.stats.l2, b.measured.stats.l2, 1e-6);
 
@@ -534,6 +538,9 @@ TEST(SharedMeshes, Invariance) {
     }
   EXPECT_LT(worst, 1e-6);
 }
+
+TEST(SharedMeshes, Invariance) { expect_invariance(false); }
+TEST(SharedMeshes, InvarianceOfTheUnitField) { expect_invariance(true); }
 
 TEST(EqualityBasis, EliminatesSeamsExactly) {
   const Mesh frame = make_frame_surface(2);
