@@ -126,16 +126,17 @@ TEST(SeamElimination, LeastL2AmongOptimaAsThePenalty) {
 }
 
 // Phase 1 on a seamed problem (linf.cpp step 4, linf_phase1.h): fixed bounds that the
-// L-infinity map meets, on the elements of one side of the seams, and a start that misses
+// L-infinity map meets, on every other element along the seams, and a start that misses
 // them. Phase 1 moves only the bounded elements' vertices; the equalities tie some of them
 // to seam partners outside, which it holds where the start has them. Under that restriction
-// the bounds may be out of reach, but they are not: the solve must not call them infeasible.
+// the bounds are out of reach (phase 1 alone stalled: numerical-error), but not for maps
+// that move every vertex: the solve must meet them, never call them infeasible.
 TEST(SeamPhase1, BoundsMetByAMapAreNeverCalledInfeasible) {
   const Problem p = test_support::seamless_problem(make_bulged_frame_surface(4, 7));
   const Result opt = solve_linf(p, {});
   ASSERT_EQ(opt.status, SolveStatus::Solved) << opt.message;
-  // Bounded: every element with a vertex that has a seam partner (a vertex in an equality row)
-  // on a half of the frame; bound = its optimal distortion + 1e-3.
+  // Bounded: the elements of even index whose first vertex is on a seam (in an equality row);
+  // bound = the element's distortion in the L-infinity map + 1e-3.
   std::vector<char> on_seam(p.num_vertices, 0);
   for (int k = 0; k < p.eq_matrix.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(p.eq_matrix, k); it; ++it)
@@ -151,8 +152,8 @@ TEST(SeamPhase1, BoundsMetByAMapAreNeverCalledInfeasible) {
     }
   }
   ASSERT_GT(bounded, 10);
-  // The start: the optimum with every vertex moved at random (seams kept by moving onto them
-  // would not matter: phase 1 holds the outside vertices wherever they are).
+  // The start: the optimum with every free vertex moved at random (off the seams too; the
+  // L2 start solve_linf prefers when it misses the bounds by less is on them).
   std::mt19937 random(3);
   std::normal_distribution<double> noise(0.0, 0.3);
   Problem q = p;
