@@ -164,8 +164,11 @@ TEST(SeamPhase1, BoundsMetByAMapAreNeverCalledInfeasible) {
   EXPECT_NE(r.status, SolveStatus::Infeasible) << r.message;
   EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
   if (r.ok()) {
-    for (int e = 0; e < p.num_elements(); ++e)
-      if (o.element_bounds[e] >= 0) EXPECT_LE(r.distortion[e], o.element_bounds[e] + 1e-7) << e;
+    for (int e = 0; e < p.num_elements(); ++e) {
+      if (o.element_bounds[e] >= 0) {
+        EXPECT_LE(r.distortion[e], o.element_bounds[e] + 1e-7) << e;
+      }
+    }
     EXPECT_LT(seam_violation(p, r.positions), 1e-9);
     EXPECT_LE(r.distortion.maxCoeff(), opt.distortion.maxCoeff() + 1e-3 + 1e-7);
   }
