@@ -45,8 +45,13 @@ int main(int argc, char** argv) {
   GParamOptions o;
   o.solver.method = Method::L2;
   if (const char* f = std::getenv("STRICTMIN_GPARAM_FIELD")) {
-    o.curvature_field = std::string(f) == "curvature";
-    o.field_options.unit = std::string(f) == "unit";
+    const std::string field = f;
+    if (field != "smoothest" && field != "curvature" && field != "unit") {
+      std::fprintf(stderr, "STRICTMIN_GPARAM_FIELD=%s: smoothest, curvature or unit\n", f);
+      return 1;
+    }
+    o.curvature_field = field == "curvature";
+    o.field_options.unit = field == "unit";
   }
   const GParamOutcome g = global_parametrize(mesh, o, argv[1]);
   DirectOptions direct;

@@ -167,7 +167,7 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["graph_time_s"] = g.graph_time_s;
   s["field_time_s"] = g.field_time_s;
   s["field_iterations"] = g.field.iterations;
-  if (o.field_options.unit && !o.field && !o.curvature_field) {
+  if (std::string(o.field_kind()) == "unit") {
     s["field_unit_steps"] = g.field.unit_steps;
     s["field_eigen_energy"] = g.field.eigen_energy;
   }

@@ -6,13 +6,9 @@
 #include <cstdio>
 
 #include "solvers/linf_active_set.h"
+#include "strictmin/solvers/timing.h"
 
 namespace strictmin::linf_detail {
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
 ActiveSetPolicy::ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds)
     : mp_(mp), effective_bounds_(effective_bounds) {}

@@ -194,7 +194,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   }
   if (short_solves > 0) {
     const std::string note = std::to_string(short_solves) + " of " + std::to_string(solves) +
-                             " solves stopped short of their gap but within tolerance / 100 and decided their test";
+                             " solves stopped short of their gap but within tolerance / 100 and decided their level or test";
     out.message = out.message.empty() ? note : out.message + "; " + note;
   }
   out.time_s = seconds_since(t0);

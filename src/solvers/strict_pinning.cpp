@@ -122,7 +122,7 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
     const Eigen::SparseMatrix<double, Eigen::RowMajor> A = p.eq_matrix;
     std::vector<Eigen::Triplet<double>> own;
     std::vector<double> own_rhs;
-    std::vector<std::pair<int, double>> terms;  // (level column, coefficient) of one row
+    std::vector<std::pair<int, double>> terms, merged;  // (level column, coefficient) of one row
     for (int row = 0; row < A.rows(); ++row) {
       double b = p.eq_rhs[row];
       terms.clear();
@@ -138,7 +138,7 @@ PinnedLevel PinnedElements::level_problem(const Problem& p, const std::vector<ch
       }
       // Two corners on one root add up; a seam edge inside one group on both sides cancels.
       std::sort(terms.begin(), terms.end());
-      std::vector<std::pair<int, double>> merged;
+      merged.clear();
       for (const auto& [column, value] : terms)
         if (!merged.empty() && merged.back().first == column)
           merged.back().second += value;

@@ -9,14 +9,11 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/report/stats.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
 
 namespace strictmin {
 namespace {
-
-double seconds_from(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 void check_options(const GParamOptions& o) {
   if (o.measure != Measure::FieldDeviation && o.measure != Measure::Arap)
@@ -26,8 +23,6 @@ void check_options(const GParamOptions& o) {
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
-  std::string why;
-  if (!o.field_options.is_valid(&why)) throw InputError("field options: " + why);
 }
 
 void say(const GParamOptions& o, const std::string& line) {
@@ -54,27 +49,27 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
   out.singular = singularities(out.quarters);
-  out.field_time_s = seconds_from(t0);
+  out.field_time_s = seconds_since(t0);
   const CrossFieldTiming& t = out.field.timing;
   std::string split;
-  const bool unit = !o.field && !o.curvature_field && o.field_options.unit;
+  const std::string kind = o.field_kind();
   if (!o.field)
     split = " (assemble " + fixed(t.assemble_s) + ", analyse " + fixed(t.analyze_s) + ", factorize " + fixed(t.factorize_s) +
             (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) +
-            (unit ? ", " + std::to_string(out.field.unit_steps) + " unit steps " + fixed(t.unit_s) + " from energy " +
+            (kind == "unit" ? ", " + std::to_string(out.field.unit_steps) + " unit steps " + fixed(t.unit_s) + " from energy " +
                         std::to_string(out.field.eigen_energy)
                   : std::string()) +
             ")";
-  say(o, "field: " + std::string(o.field ? "given" : o.curvature_field ? "curvature" : unit ? "unit" : "smoothest") + ", energy " + std::to_string(out.field.energy) +
+  say(o, "field: " + kind + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }
 
 void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   out.cut = cut_graph(mesh, out.graph, out.frames, out.field.u, out.quarters);
-  const double cut_s = seconds_from(t0);
+  const double cut_s = seconds_since(t0);
   out.problem = seamless_problem(mesh, out.graph, out.cut);
-  out.cut_time_s = seconds_from(t0);
+  out.cut_time_s = seconds_since(t0);
   say(o, "cut: " + std::to_string(out.cut.num_cut_edges) + " seam edges in " + std::to_string(out.cut.branches.size()) +
              " branches, " + std::to_string(out.cut.num_wedges()) + " cut-mesh vertices, " + fixed(out.cut_time_s) +
              " s (cut graph " + fixed(cut_s) + ", seamless problem " + fixed(out.cut_time_s - cut_s) + ")");
@@ -92,7 +87,7 @@ void solve(const GParamOptions& o, GParamOutcome& out) {
     const Result start = solve_l2(out.problem);  // the field-guided map starts local-global
     out.result = start.ok() ? local_global(out.problem, start.positions, o.solver, lg) : start;
   }
-  out.solve_time_s = seconds_from(t0);
+  out.solve_time_s = seconds_since(t0);
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
 }
 
@@ -114,7 +109,7 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   GParamOutcome out;
   const auto t0 = std::chrono::steady_clock::now();
   out.graph = surface_graph(mesh, source);
-  out.graph_time_s = seconds_from(t0);
+  out.graph_time_s = seconds_since(t0);
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   compute_field(mesh, o, out);
   compute_cut(mesh, o, out);

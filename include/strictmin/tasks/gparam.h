@@ -35,6 +35,12 @@ struct GParamOptions {
   SolverOptions solver;
   LocalGlobalOptions local_global;
   std::function<void(const std::string&)> progress;  // one line per phase
+
+  // Which field the run computes or takes: "given" (field set), "curvature", "unit"
+  // (field_options.unit) or "smoothest".
+  const char* field_kind() const {
+    return field ? "given" : curvature_field ? "curvature" : field_options.unit ? "unit" : "smoothest";
+  }
 };
 
 struct GParamOutcome {
