@@ -1,4 +1,5 @@
-// strictmin gparam MESH -o OUT.obj [--field smoothest|unit|curvature|FILE] [--field-out FILE]
+// strictmin gparam MESH -o OUT.obj [--field smoothest|unit|curvature|FILE] [--cones FILE]
+//   [--field-out FILE] [--cones-out FILE]
 //   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
 #include <chrono>
 #include <cmath>
@@ -18,10 +19,10 @@ namespace strictmin::cli {
 namespace {
 
 struct GParamArgs {
-  std::string mesh, output, field = "smoothest", field_out, measure = "fd";
+  std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
-  bool edge_length_given = false, quads_given = false;
+  bool edge_length_given = false, quads_given = false, parallel = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start
@@ -47,6 +48,12 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
     throw InputError("--curvature-alignment must be a positive number, got " + std::to_string(a.curvature_alignment));
   o.curvature_alignment = a.curvature_alignment;
+  o.parallel_field = a.parallel;
+  if (!a.cones.empty()) {
+    if (a.field != "smoothest") throw InputError("give --cones or --field " + a.field + ", not both");
+    o.cones = read_cone_file(a.cones, mesh.num_vertices());
+    o.field_source = a.cones;
+  }
   if (a.field != "smoothest" && a.field != "curvature" && a.field != "unit") {
     o.field = read_field_file(a.field, mesh.num_elements());
     o.field_source = a.field;
@@ -65,7 +72,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_paths(a.out);
-  check_output_paths({{"--output", a.output}, {"--field-out", a.field_out}});
+  check_output_paths({{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}});
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
   std::vector<std::string> warnings;
@@ -77,6 +84,7 @@ int run_gparam(const GParamArgs& a) {
   const GParamOutcome g = global_parametrize(mesh, o, a.mesh);
   if (!g.result.ok()) progress(a.out, "warning: " + status_name(g.result.status) + ": " + g.result.message);
   if (!a.field_out.empty()) write_field_file(a.field_out, field_directions(g.field, g.frames));
+  if (!a.cones_out.empty()) write_cone_file(a.cones_out, g.quarters);
   if (!a.output.empty()) write_mesh(a.output, g.mapped);
   nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, a.output, a.out.distortion});
   s["time_s"] = seconds_since(t0);
@@ -108,6 +116,14 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
                   "--field curvature: how closely the field follows the principal directions (smaller: smoother)")
       ->capture_default_str();
   cmd->add_option("--field-out", args->field_out, "Write the field used, one direction per face per line");
+  cmd->add_option("--cones", args->cones,
+                  "The field with exactly these cones: a file with one total angle (radians) per vertex per line, 2 pi "
+                  "where there is none, 2 pi - k pi/2 for an index-k/4 cone (the smoothest such field, docs/gparam.md)");
+  cmd->add_flag("--parallel", args->parallel,
+                 "Keep the field's singularities and make it parallel between them (the smoothest field with exactly "
+                 "those cones): lower smoothness energy and maximum distortion, a few Laplacian solves more");
+  cmd->add_option("--cones-out", args->cones_out, "Write the field's singularities as a cone file (the --cones format)");
+
   cmd->add_option("--edge-length", args->edge_length, "Target edge length h: a surface length h maps to 1 in UV");
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")

@@ -185,12 +185,14 @@ def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, v
 
 
 def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=0.01,
-           progress=None, verbose=False, **options):
+           parallel=False, cones=None, progress=None, verbose=False, **options):
     """Globally parametrize a closed manifold triangle surface (one component, any genus)
     guided by a cross field, with seams as linear constraints (the paper's Appendix A;
     docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
     field) or arap; field: None or "smoothest", "unit" (the smoothest field lowered among unit fields),
-    "curvature", or #F by 3 directions;
+    "curvature", or #F by 3 directions; parallel: keep the field's singularities and make it
+    parallel between them (the CLI's --parallel); cones: #V integers, each vertex's index in
+    quarters (the field with exactly these cones, the CLI's --cones; instead of field);
     edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
     squares (default 1000). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
@@ -224,8 +226,19 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
             raise ValueError(f"quads: {quads} is out of range")
     if isinstance(curvature_alignment, (bool, str)) or not isinstance(curvature_alignment, numbers.Real):
         raise TypeError("curvature_alignment must be a number")
+    if not isinstance(parallel, bool):
+        raise TypeError("parallel must be True or False")
+    if cones is not None:
+        cones = np.asarray(cones)
+        if cones.dtype.kind not in "iu" or cones.ndim != 1:
+            raise ValueError(f"cones must be a 1-D array of integers (indices in quarters), got dtype {cones.dtype}, "
+                             f"shape {cones.shape}")
+        if cones.size and (cones.min() < -2**31 or cones.max() >= 2**31):
+            raise ValueError("cones: an index is out of range")
+        cones = [int(q) for q in cones]
     return Result(_strictmin.gparam(V, F, method, measure, field, directions, edge_length, quads,
-                                    float(curvature_alignment), options, _progress(progress, verbose)))
+                                    float(curvature_alignment), parallel, cones, options,
+                                    _progress(progress, verbose)))
 
 
 def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **options):

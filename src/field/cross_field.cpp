@@ -33,11 +33,6 @@ void factorize_or_throw(HermitianCholesky& cholesky, const HermitianLower& A, co
   out.timing.factorize_s = cholesky.factorize_s;
 }
 
-double edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, int e) {
-  const double len2 = (mesh.V.row(g.edges(e, 1)) - mesh.V.row(g.edges(e, 0))).squaredNorm();
-  return 3.0 * len2 / (fr.area(g.edge_faces(e, 0)) + fr.area(g.edge_faces(e, 1)));
-}
-
 // E + D (D diagonal) as a complex F by F Hermitian matrix, lower triangle (see the header): per edge
 // w (|u_f|^2 + |u_h|^2) on the diagonal and -w rho at (h, f) (-w conj(rho) at (f, h)).
 HermitianLower hermitian_energy(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
@@ -57,7 +52,7 @@ HermitianLower hermitian_energy(const Mesh& mesh, const SurfaceGraph& g, const F
   }
   for (int e = 0; e < E; ++e) {
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
-    const double w = edge_weight(mesh, g, fr, e);
+    const double w = field_edge_weight(mesh, g, fr, e);
     const Complex rho = std::polar(1.0, 4.0 * fr.transport(e));
     A.value[A.start[f]] += w;
     A.value[A.start[h]] += w;
@@ -157,6 +152,11 @@ bool CrossFieldOptions::is_valid(std::string* why) const {
   return check.ok();
 }
 
+double field_edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, int e) {
+  const double len2 = (mesh.V.row(g.edges(e, 1)) - mesh.V.row(g.edges(e, 0))).squaredNorm();
+  return 3.0 * len2 / (fr.area(g.edge_faces(e, 0)) + fr.area(g.edge_faces(e, 1)));
+}
+
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
   FaceFrames fr;
   const int F = g.num_faces;
@@ -188,7 +188,7 @@ double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGr
   double sum = 0;
   for (int e = 0; e < g.num_edges(); ++e) {
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
-    sum += edge_weight(mesh, g, fr, e) * std::norm(u(h) - std::polar(1.0, 4.0 * fr.transport(e)) * u(f));
+    sum += field_edge_weight(mesh, g, fr, e) * std::norm(u(h) - std::polar(1.0, 4.0 * fr.transport(e)) * u(f));
   }
   return sum;
 }

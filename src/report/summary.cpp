@@ -148,7 +148,10 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   nlohmann::json s = task_header("gparam", files);
   s["method"] = method_name(o.solver.method);
   s["measure"] = measure_name(o.measure);
-  s["field"] = field;
+  s["field"] = o.cones ? std::string("cones") : field;
+  s["field_parallel"] = o.parallel_field || o.cones.has_value();
+  if (o.cones || o.parallel_field) s["cones_missed"] = g.cones_missed;
+  if (o.parallel_field && !o.cones) s["field_energy_before_parallel"] = g.field_energy_before_parallel;
   s["field_energy"] = g.field.energy;
   s["elements"] = mesh.num_elements();
   s["vertices"] = mesh.num_vertices();

@@ -36,30 +36,50 @@ std::string fixed(double seconds) {
 }
 
 
+// GParamOptions::parallel_field: the parallel field with the computed field's singularities
+// (the same quarters, so out.quarters stands); the computed field's counters are kept.
+void make_parallel(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CrossField parallel = cone_cross_field(mesh, out.graph, out.frames, out.quarters, o.field_options);
+  out.field_energy_before_parallel = out.field.energy;
+  out.field.u = std::move(parallel.u);
+  out.field.energy = parallel.energy;
+  out.field.timing.parallel_s = seconds_since(t0);
+}
+
 void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   out.frames = face_frames(mesh, out.graph);
   if (o.field) {
     out.field = cross_field_from_directions(*o.field, out.frames, o.field_source);
     out.field.energy = field_energy(out.field.u, mesh, out.graph, out.frames);
+  } else if (o.cones) {
+    out.field = cone_cross_field(mesh, out.graph, out.frames, *o.cones, o.field_options, o.field_source);
   } else if (o.curvature_field) {
     out.field = curvature_cross_field(mesh, out.graph, out.frames, o.curvature_alignment);
   } else {
     out.field = smoothest_cross_field(mesh, out.graph, out.frames, o.field_options);
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
+  if (o.parallel_field && !o.cones) make_parallel(mesh, o, out);
   out.singular = singularities(out.quarters);
   out.field_time_s = seconds_since(t0);
   const CrossFieldTiming& t = out.field.timing;
   std::string split;
   const std::string kind = o.field_kind();
-  if (!o.field)
+  if (!o.field && !o.cones)
     split = " (assemble " + fixed(t.assemble_s) + ", analyse " + fixed(t.analyze_s) + ", factorize " + fixed(t.factorize_s) +
             (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) +
             (kind == "unit" ? ", " + std::to_string(out.field.unit_steps) + " unit steps " + fixed(t.unit_s) + " from energy " +
                         std::to_string(out.field.eigen_energy)
                   : std::string()) +
             ")";
+  if (o.parallel_field && !o.cones)
+    split += ", made parallel in " + fixed(t.parallel_s) + " s from energy " + std::to_string(out.field_energy_before_parallel);
+  if (out.cones_missed > 0)
+    split += "; warning: " + std::to_string(out.cones_missed) +
+             " vertices' indices differ from the cones asked for (a cone of index -1/2 or lower at a vertex of few "
+             "faces: docs/gparam.md)";
   say(o, "field: " + kind + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }

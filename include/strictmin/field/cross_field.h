@@ -29,9 +29,13 @@ struct FaceFrames {
 
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& graph);
 
+// The smoothness energy's weight w_e = 3 |e|^2 / (A_f + A_g) of edge e (above).
+double field_edge_weight(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames, int e);
+
 // Wall seconds of a computed field's phases (0 for a given field).
 struct CrossFieldTiming {
   double assemble_s = 0, analyze_s = 0, factorize_s = 0, iterate_s = 0, unit_s = 0;
+  double parallel_s = 0;  // GParamOptions::parallel_field: the parallel field with these singularities
 };
 
 struct CrossField {

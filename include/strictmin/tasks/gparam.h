@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "strictmin/field/cone_field.h"
 #include "strictmin/field/cross_field.h"
 #include "strictmin/field/cut_graph.h"
 #include "strictmin/field/singularities.h"
@@ -30,16 +31,26 @@ struct GParamOptions {
   std::optional<Eigen::MatrixXd> field;  // #F by 3 given directions (--field FILE)
   bool curvature_field = false;          // --field curvature (when no field is given)
   double curvature_alignment = 0.01;  // --curvature-alignment
-  std::string field_source;              // names the field in messages
+  std::string field_source;              // names the field (or the cone file) in messages
+  // --cones FILE: the field with exactly these cones (#V indices in quarters, cone_field.h).
+  std::optional<std::vector<int>> cones;
+  // --parallel: keep the field's singularities and replace the field by the parallel one with
+  // exactly those cones (cone_cross_field): smoother, and a lower maximum distortion
+  // (docs/gparam.md, "Fields from cones"). Implied by `cones`.
+  bool parallel_field = false;
   CrossFieldOptions field_options;
   SolverOptions solver;
   LocalGlobalOptions local_global;
   std::function<void(const std::string&)> progress;  // one line per phase
 
-  // Which field the run computes or takes: "given" (field set), "curvature", "unit"
-  // (field_options.unit) or "smoothest".
+  // Which field the run computes or takes: "given" (field set), "cones" (cones set),
+  // "curvature", "unit" (field_options.unit) or "smoothest".
   const char* field_kind() const {
-    return field ? "given" : curvature_field ? "curvature" : field_options.unit ? "unit" : "smoothest";
+    return field             ? "given"
+           : cones           ? "cones"
+           : curvature_field ? "curvature"
+           : field_options.unit ? "unit"
+                                : "smoothest";
   }
 };
 
@@ -47,6 +58,8 @@ struct GParamOutcome {
   SurfaceGraph graph;
   FaceFrames frames;
   CrossField field;
+  double field_energy_before_parallel = 0;  // parallel_field: the computed field's E before it
+  int cones_missed = 0;  // cones or parallel_field: vertices whose index differs from the one asked for
   std::vector<int> quarters;  // every vertex's index in quarters
   std::vector<Singularity> singular;
   CutGraph cut;
