@@ -61,6 +61,37 @@ def test_poincare_hopf(closed):
             assert r.summary["field_energy"] <= r.summary["field_eigen_energy"]
 
 
+def test_cones_and_parallel(tmp_path, closed):
+    """cones= gives the field with exactly those singularities (the CLI's --cones on the same
+    cone file); parallel=True keeps the smoothest field's and lowers its energy."""
+    mesh, V, F = closed
+    smooth = strictmin.gparam(V, F, quads=60)
+    quarters = np.zeros(len(V), dtype=int)
+    for v, q in smooth.singularities:
+        quarters[v] = q
+    r = strictmin.gparam(V, F, method="linf", quads=60, cones=quarters)
+    assert r.singularities == smooth.singularities
+    assert r.summary["field"] == "cones" and r.summary["field_parallel"] and r.summary["cones_missed"] == 0
+    assert r.summary["field_energy"] < smooth.summary["field_energy"]
+    path = tmp_path / "cones.txt"
+    np.savetxt(path, 2 * np.pi - quarters * np.pi / 2, fmt="%.17g")
+    summary, dist = cli_run(tmp_path, ["gparam", mesh, "--cones", path, "--method", "linf", "--quads", 60])
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    summary["field"] = "cones"
+    same_summary(r.summary, summary)
+    p = strictmin.gparam(V, F, quads=60, parallel=True)
+    assert p.singularities == smooth.singularities and p.summary["field_parallel"]
+    assert p.summary["field_energy"] == pytest.approx(r.summary["field_energy"], rel=1e-12)
+    with pytest.raises(ValueError, match="Euler characteristic"):
+        strictmin.gparam(V, F, cones=np.zeros(len(V), dtype=int))
+    with pytest.raises(ValueError, match="integers"):
+        strictmin.gparam(V, F, cones=np.zeros(len(V)))
+    with pytest.raises(ValueError, match="not both"):
+        strictmin.gparam(V, F, field="unit", cones=quarters)
+    with pytest.raises(TypeError):
+        strictmin.gparam(V, F, parallel=1)
+
+
 def test_progress_records(closed):
     _, V, F = closed
     records = []
