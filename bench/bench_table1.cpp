@@ -6,6 +6,7 @@
 //   bench_table1 --merge a.json b.json ...
 //   bench_table1 --only-l2 [mesh.obj ...]   (field, cut and L2 only: no L-infinity, relax, direct)
 //   bench_table1 --field unit ...          (the unit field, --field unit, instead of the smoothest)
+//   bench_table1 --parallel ...            (the field made parallel with its singularities, --parallel)
 //
 // Without meshes: every .obj in ../shared/data/closed (skips with a message when absent).
 // Prints a markdown table (docs/performance.md; ratio = our time / the paper's) and writes
@@ -47,7 +48,8 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-nlohmann::json run_mesh(const fs::path& file, int direct_max_faces, int sweeps, bool only_l2, bool unit_field) {
+nlohmann::json run_mesh(const fs::path& file, int direct_max_faces, int sweeps, bool only_l2, bool unit_field,
+                        bool parallel) {
   const Mesh mesh = read_mesh(file.string());
   nlohmann::json row;
   row["mesh"] = file.stem().string();
@@ -55,8 +57,11 @@ nlohmann::json run_mesh(const fs::path& file, int direct_max_faces, int sweeps, 
   GParamOptions o;
   o.solver.method = Method::L2;
   o.field_options.unit = unit_field;
+  o.parallel_field = parallel;
   const GParamOutcome g = global_parametrize(mesh, o, file.string());
   row["field"] = unit_field ? "unit" : "smoothest";
+  row["field_parallel"] = parallel;
+  row["field_energy"] = g.field.energy;
   row["singularities"] = g.singular.size();
   row["euler_characteristic"] = g.graph.euler_characteristic();
   row["graph_s"] = g.graph_time_s;
@@ -151,7 +156,7 @@ void print_table(const nlohmann::json& rows) {
 }  // namespace
 
 constexpr const char* kUsage =
-    "usage: bench_table1 [--out FILE.json] [--direct-max-faces N] [--sweeps N] [--only-l2] [--field smoothest|unit]\n"
+    "usage: bench_table1 [--out FILE.json] [--direct-max-faces N] [--sweeps N] [--only-l2] [--field smoothest|unit] [--parallel]\n"
     "                    [MESH.obj ...]\n"
     "       bench_table1 --merge RUN.json ...   (print earlier runs' rows as one table)\n"
     "Without meshes: every .obj in the shared data's closed/ folder (skipped when absent).\n";
@@ -171,7 +176,7 @@ int run(int argc, char** argv) {
   std::string out = "table1.json";
   int direct_max_faces = 10000, sweeps = 50;
   std::vector<fs::path> meshes;
-  bool merge = false, only_l2 = false, unit_field = false;  // the arguments are JSON files of earlier runs: print their rows as one table
+  bool merge = false, only_l2 = false, unit_field = false, parallel = false;  // the arguments are JSON files of earlier runs: print their rows as one table
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
@@ -183,6 +188,7 @@ int run(int argc, char** argv) {
     else if (a == "--sweeps" && i + 1 < argc) sweeps = parse_count(a, argv[++i]);
     else if (a == "--merge") merge = true;
     else if (a == "--only-l2") only_l2 = true;
+    else if (a == "--parallel") parallel = true;
     else if (a == "--field" && i + 1 < argc) {
       const std::string f = argv[++i];
       if (f != "smoothest" && f != "unit") throw std::invalid_argument("--field " + f + ": smoothest or unit");
@@ -211,7 +217,7 @@ int run(int argc, char** argv) {
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& m : meshes) {
     std::fprintf(stderr, "bench_table1: %s\n", m.c_str());
-    rows.push_back(run_mesh(m, direct_max_faces, sweeps, only_l2, unit_field));
+    rows.push_back(run_mesh(m, direct_max_faces, sweeps, only_l2, unit_field, parallel));
     std::ofstream(out) << rows.dump(2) << "\n";
   }
   if (only_l2) print_l2_table(rows);

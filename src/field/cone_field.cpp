@@ -2,14 +2,14 @@
 // docs/gparam.md "Fields from cones").
 #include "strictmin/field/cone_field.h"
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <cmath>
 #include <complex>
 #include <numbers>
 
 #include "strictmin/field/singularities.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/sparse_cholesky.h"
 #include "solvers/option_check.h"
 
 namespace strictmin {
@@ -34,8 +34,8 @@ class HeldLaplacian {
   explicit HeldLaplacian(SparseMatrix L) {
     const double held = L.coeff(0, 0);
     L.coeffRef(0, 0) += held > 0 ? held : 1.0;
-    ldlt_.compute(L);
-    if (ldlt_.info() != Eigen::Success) throw InputError("cone field: a Laplacian could not be factorized");
+    cholesky_.analyze(L);
+    if (!cholesky_.factorize(L)) throw InputError("cone field: a Laplacian could not be factorized");
   }
   static SparseMatrix laplacian(int n, const std::vector<Eigen::Triplet<double>>& edges_ij_c) {
     std::vector<Eigen::Triplet<double>> t;
@@ -55,11 +55,11 @@ class HeldLaplacian {
   // b is first made to sum to zero.
   Eigen::VectorXd solve(Eigen::VectorXd b) const {
     b.array() -= b.mean();
-    return ldlt_.solve(b);
+    return cholesky_.solve(b).col(0);
   }
 
  private:
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+  SparseCholesky cholesky_;
 };
 
 // The vertex Laplacian C diag(1/w) C^T of the header (edge e joins its two vertices with 1/w_e).
