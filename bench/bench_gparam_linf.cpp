@@ -5,7 +5,8 @@
 //
 // Prints per mesh: faces, the time of the solve (wall and process CPU), iterations, status, k, certified bound,
 // seam violation (largest |A q - b|). STRICTMIN_LINF_PENALTY=1: the equalities by the penalty
-// (LinfOptions::eliminate_equalities false), for comparisons.
+// (LinfOptions::eliminate_equalities false), for comparisons. STRICTMIN_GPARAM_PARALLEL=1: the
+// field made parallel with its singularities (--parallel).
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     const Mesh mesh = read_mesh(argv[a]);
     GParamOptions o;
     o.solver.method = Method::L2;
+    o.parallel_field = std::getenv("STRICTMIN_GPARAM_PARALLEL") != nullptr;
     const GParamOutcome g = global_parametrize(mesh, o, argv[a]);
     LinfOptions lo = bench::linf_options_from_env();
     const auto t0 = std::chrono::steady_clock::now();
