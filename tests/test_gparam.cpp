@@ -495,12 +495,15 @@ TEST(SharedMeshes, DirectPinsOnTheSeams) {
 
 // Relabelled vertices and a rigid motion change no figure beyond solver tolerance; scaling
 // the mesh and the edge length by s gives the same map (the same figures). For the smoothest
-// field and for the unit field (its steps and its energy too).
-void expect_invariance(bool unit_field) {
+// field, for the unit field (its steps and its energy too) and for the smoothest field made
+// parallel (the dual tree's root, face 0, moves with the relabelling: the field's global
+// angle is not fixed, the figures are).
+void expect_invariance(bool unit_field, bool parallel = false) {
   const Mesh* cow = small_closed_mesh("cow");
   if (!cow) GTEST_SKIP() << "no closed/cow.obj under " << STRICTMIN_SHARED_DATA;
   GParamOptions o;
   o.field_options.unit = unit_field;
+  o.parallel_field = parallel;
   o.edge_length = 0.05;
   const GParamOutcome a = global_parametrize(*cow, o);
 
@@ -541,6 +544,7 @@ void expect_invariance(bool unit_field) {
 
 TEST(SharedMeshes, Invariance) { expect_invariance(false); }
 TEST(SharedMeshes, InvarianceOfTheUnitField) { expect_invariance(true); }
+TEST(SharedMeshes, InvarianceOfTheParallelField) { expect_invariance(false, true); }
 
 TEST(EqualityBasis, EliminatesSeamsExactly) {
   const Mesh frame = make_frame_surface(2);
