@@ -131,6 +131,30 @@ TEST(ConeField, ArbitraryConesAreReproduced) {
   }
 }
 
+// A cone of index -3/4 at a vertex of the bumpy cube (6 faces or fewer) needs turns over
+// pi/4 in its fan: global_parametrize reports the vertices whose index differs, and the
+// field's own singularities (which the cut and the map use) still add up to chi.
+TEST(ConeField, UnrealizableConesAreReported) {
+  const Mesh m = bumpy_bulged_cube();
+  const SurfaceGraph g = surface_graph(m);
+  std::vector<int> q(g.num_vertices, 0);
+  q[10] = -3;
+  for (int k = 0; k < 11; ++k) q[20 + 5 * k] = 1;
+  ASSERT_LE(g.fan_start[11] - g.fan_start[10], 6);
+  GParamOptions o;
+  o.cones = q;
+  const GParamOutcome out = global_parametrize(m, o);
+  int differ = 0, sum = 0;
+  for (int v = 0; v < g.num_vertices; ++v) {
+    differ += out.quarters[v] != q[v];
+    sum += out.quarters[v];
+  }
+  EXPECT_GT(differ, 0);
+  EXPECT_EQ(out.cones_missed, differ);
+  EXPECT_EQ(sum, 8);
+  EXPECT_LT(out.seam_error, 1e-9);
+}
+
 TEST(ConeField, RefusesConesThatBreakPoincareHopf) {
   const Surface s(make_cube_surface(2));
   std::vector<int> q = quarters_of_smoothest(s);

@@ -61,7 +61,14 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
     out.field = smoothest_cross_field(mesh, out.graph, out.frames, o.field_options);
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
-  if (o.parallel_field && !o.cones) make_parallel(mesh, o, out);
+  std::vector<int> wanted = o.cones ? *o.cones : std::vector<int>();
+  if (o.parallel_field && !o.cones) {
+    wanted = out.quarters;
+    make_parallel(mesh, o, out);
+    out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
+  }
+  // The cones asked for that the parallel field does not have (cone_field.h).
+  for (size_t v = 0; v < wanted.size(); ++v) out.cones_missed += wanted[v] != out.quarters[v];
   out.singular = singularities(out.quarters);
   out.field_time_s = seconds_since(t0);
   const CrossFieldTiming& t = out.field.timing;
@@ -78,8 +85,8 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
     split += ", made parallel in " + fixed(t.parallel_s) + " s from energy " + std::to_string(out.field_energy_before_parallel);
   if (out.cones_missed > 0)
     split += "; warning: " + std::to_string(out.cones_missed) +
-             " vertices' indices differ from the cones asked for (a cone of index -1/2 or lower at a vertex of few "
-             "faces: docs/gparam.md)";
+             " vertices' indices differ from the cones asked for (the field would turn by more than pi/4 between two "
+             "faces: near cones of index -1/2 or beyond, or vertices of few faces; docs/gparam.md)";
   say(o, "field: " + kind + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }

@@ -177,6 +177,28 @@ class GParam(unittest.TestCase):
         self.assertLess(b["max_distortion"], 0.92 * a["max_distortion"])
         self.assertFalse(a["field_parallel"])
 
+    def test_elephant_cone_file(self):
+        """--cones with the shared elephant's cone file (genus 3, cones down to -3/4): the
+        summary's cones_missed is the number of vertices whose index in --cones-out differs
+        from the file's (measured: 17), and the field's own indices add up to chi."""
+        elephant = os.path.join(DATA, "closed", "elephant.obj")
+        cones = os.path.join(DATA, "closed", "elephant.cones.txt")
+        if not (os.path.exists(elephant) and os.path.exists(cones)):
+            self.skipTest(f"no {elephant} or {cones}")
+        out = self.out("elephant_cones.txt")
+        s = self.gparam(elephant, "--cones", cones, "--cones-out", out)
+
+        def quarters(path):
+            with open(path) as f:
+                return [round((2 * math.pi - float(l)) / (math.pi / 2)) for l in f if l.strip()]
+
+        asked, got = quarters(cones), quarters(out)
+        self.assertEqual(s["cones_missed"], sum(1 for a, b in zip(asked, got) if a != b))
+        self.assertGreater(s["cones_missed"], 0)
+        self.assertEqual(sum(got), 4 * s["euler_characteristic"])
+        self.assertEqual(s["singularities"], sum(1 for q in got if q != 0))
+        self.assertLess(s["seam_error"], 1e-9)
+
     def test_quads_sets_the_edge_length(self):
         s = self.gparam(self.cube, "--quads", "96")
         # area 6 * 2^2 = 24, 96 squares: h = 0.5
