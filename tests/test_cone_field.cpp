@@ -180,6 +180,8 @@ TEST(ConeFile, RoundTripAndErrorsNameTheLine) {
   expect_input_error([&] { read_cone_file(write("6.283185307179586\nx\n"), 2); }, {"line 2", "'x' is not a number"});
   expect_input_error([&] { read_cone_file(write("6.283185307179586\n"), 2); }, {"1 angles for 2 vertices"});
   expect_input_error([&] { read_cone_file(write("0\n"), 1); }, {"line 1"});
+  expect_input_error([&] { read_cone_file(write("nan\n"), 1); }, {"line 1", "nan"});
+  expect_input_error([&] { read_cone_file(write("1e300\n"), 1); }, {"line 1", "too large"});
   expect_input_error([&] { read_cone_file(write("3.14159265358979 1\n"), 1); }, {"line 1", "one number"});
   EXPECT_EQ(read_cone_file(write("# a comment\n4.71238898038469  # index 1/4\n\n"), 1), std::vector<int>{1});
   std::filesystem::remove_all(dir);

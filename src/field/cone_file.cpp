@@ -30,6 +30,12 @@ std::vector<int> read_cone_file(const std::string& path, int num_vertices) {
     const double angle = std::strtod(word.c_str(), &end);
     if (end == word.c_str() || *end != '\0') throw InputError(located(path, line, "'" + word + "' is not a number"));
     const double q = (2 * std::numbers::pi - angle) / kQuarter;
+    // Beyond -kMostQuarters a cone is not one a field on any mesh can have (and the index
+    // would not fit an int).
+    constexpr double kMostQuarters = 1e4;
+    if (std::isfinite(q) && q < -kMostQuarters)
+      throw InputError(located(path, line, "the angle " + word + " is too large for a cone (at most 2 pi + " +
+                                               std::to_string(static_cast<int>(kMostQuarters)) + " quarter turns)"));
     if (!std::isfinite(q) || std::abs(q - std::round(q)) > 1e-6 || angle <= 0)
       throw InputError(located(path, line, "the angle " + word +
                                                " is not 2 pi minus a whole number of quarter turns (a positive angle k pi/2)"));
