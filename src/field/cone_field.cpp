@@ -10,7 +10,6 @@
 #include "strictmin/field/singularities.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/sparse_cholesky.h"
-#include "solvers/option_check.h"
 
 namespace strictmin {
 namespace {
@@ -68,23 +67,6 @@ HeldLaplacian vertex_laplacian(const SurfaceGraph& g, const Eigen::VectorXd& w) 
   e.reserve(g.num_edges());
   for (int k = 0; k < g.num_edges(); ++k) e.emplace_back(g.edges(k, 0), g.edges(k, 1), 1.0 / w(k));
   return HeldLaplacian(g.num_vertices, e);
-}
-
-// Breadth-first dual spanning tree from face 0: faces in visiting order, each face's parent edge.
-std::vector<int> dual_tree(const SurfaceGraph& g, std::vector<int>& parent_edge) {
-  parent_edge.assign(g.num_faces, -1);
-  std::vector<char> seen(g.num_faces, 0);
-  std::vector<int> order{0};
-  seen[0] = 1;
-  for (size_t k = 0; k < order.size(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const int f = order[k], h = g.neighbour(f, i);
-      if (seen[h]) continue;
-      seen[h] = 1;
-      parent_edge[h] = g.face_edges(f, i);
-      order.push_back(h);
-    }
-  return order;
 }
 
 // Per-face field angles, parallel for the connection transport + omega along the dual tree.
@@ -215,7 +197,7 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceF
   for (int e = 0; e < g.num_edges(); ++e) omega(e) = (lambda(g.edges(e, 1)) - lambda(g.edges(e, 0))) / w(e);
   // 2. The harmonic part: the generators' holonomy to whole quarter turns (genus > 0).
   std::vector<int> parent_edge;
-  const std::vector<int> order = dual_tree(g, parent_edge);
+  const std::vector<int> order = dual_spanning_tree(g, parent_edge);
   Eigen::VectorXd phi = propagate(g, fr, omega, order, parent_edge);
   if (g.euler_characteristic() != 2) {
     omega += harmonic_part(g, w, generator_correction(g, fr, omega, phi, parent_edge));
@@ -225,12 +207,8 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceF
   CrossField out;
   out.u.resize(g.num_faces);
   for (int f = 0; f < g.num_faces; ++f) out.u(f) = std::polar(1.0, 4.0 * phi(f));
-  if (options.pin_face >= 0 && options.pin_face < g.num_faces) {
-    const int f = options.pin_face;
-    const Eigen::Vector3d d = options.pin_direction;
-    const double a = std::atan2(d.dot(fr.y.row(f).transpose()), d.dot(fr.x.row(f).transpose()));
-    out.u *= std::polar(1.0, 4.0 * a) / out.u(f);
-  }
+  if (options.pin_face >= 0 && options.pin_face < g.num_faces)
+    pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
   out.energy = field_energy(out.u, mesh, g, fr);
   return out;
 }

@@ -99,12 +99,6 @@ Eigen::VectorXcd normalize_per_face(const Eigen::VectorXcd& x) {
   return u;
 }
 
-// Multiplies the field by the global phase that gives face `f` the direction d.
-void pin_phase(Eigen::VectorXcd& u, int f, const Eigen::Vector3d& d, const FaceFrames& fr) {
-  const double a = std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f)));
-  u *= std::polar(1.0, 4.0 * a) / u(f);
-}
-
 // CrossFieldOptions::unit: from the normalized eigenvector u, steps of
 // u <- normalize((E + s M)^-1 s M u) (E + s M factored in the cholesky that held E + eps M:
 // the same pattern, so its analysis is kept); returns the field of least E met.
@@ -150,6 +144,11 @@ bool CrossFieldOptions::is_valid(std::string* why) const {
       .non_negative("unit_progress", unit_progress)
       .that(pin_direction.allFinite(), "pin_direction must be finite");
   return check.ok();
+}
+
+void pin_field_rotation(Eigen::VectorXcd& u, int f, const Eigen::Vector3d& d, const FaceFrames& fr) {
+  const double a = std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f)));
+  u *= std::polar(1.0, 4.0 * a) / u(f);
 }
 
 double field_edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, int e) {
@@ -226,7 +225,7 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   out.u = normalize_per_face(eigen.vector);
   out.energy = out.eigen_energy = field_energy(out.u, mesh, g, fr);
   if (options.unit) lower_among_unit_fields(mesh, g, fr, options, A, eps, cholesky, out);
-  if (options.pin_face >= 0 && options.pin_face < F) pin_phase(out.u, options.pin_face, options.pin_direction, fr);
+  if (options.pin_face >= 0 && options.pin_face < F) pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
   return out;
 }
 

@@ -16,25 +16,12 @@ double transport_from(const SurfaceGraph& g, const FaceFrames& fr, int e, int f)
   return g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
 }
 
-// Breadth-first dual spanning tree from face 0; returns the faces in visiting order and
-// each face's parent edge (-1 for the root).
-std::vector<int> dual_spanning_tree(const SurfaceGraph& g, CutGraph& c, std::vector<int>& parent_edge) {
+// The dual spanning tree (surface_graph.h), its edges marked in c.tree.
+std::vector<int> dual_tree(const SurfaceGraph& g, CutGraph& c, std::vector<int>& parent_edge) {
+  const std::vector<int> order = dual_spanning_tree(g, parent_edge);
   c.tree.assign(g.num_edges(), 0);
-  parent_edge.assign(g.num_faces, -1);
-  std::vector<char> seen(g.num_faces, 0);
-  std::vector<int> order{0};
-  seen[0] = 1;
-  for (size_t k = 0; k < order.size(); ++k) {
-    const int f = order[k];
-    for (int i = 0; i < 3; ++i) {
-      const int h = g.neighbour(f, i);
-      if (seen[h]) continue;
-      seen[h] = 1;
-      c.tree[g.face_edges(f, i)] = 1;
-      parent_edge[h] = g.face_edges(f, i);
-      order.push_back(h);
-    }
-  }
+  for (int f = 0; f < g.num_faces; ++f)
+    if (parent_edge[f] >= 0) c.tree[parent_edge[f]] = 1;
   return order;
 }
 
@@ -172,7 +159,7 @@ CutGraph cut_graph(const Mesh&, const SurfaceGraph& g, const FaceFrames& fr, con
                    const std::vector<int>& quarters) {
   CutGraph c;
   std::vector<int> parent_edge;
-  const std::vector<int> order = dual_spanning_tree(g, c, parent_edge);
+  const std::vector<int> order = dual_tree(g, c, parent_edge);
   prune_cut(g, quarters, c);
   comb(g, fr, u, order, parent_edge, c);
   wedges(g, c);

@@ -12,6 +12,22 @@
 #include "strictmin/param/topology.h"
 
 namespace strictmin {
+
+std::vector<int> dual_spanning_tree(const SurfaceGraph& g, std::vector<int>& parent_edge) {
+  parent_edge.assign(g.num_faces, -1);
+  std::vector<char> seen(g.num_faces, 0);
+  std::vector<int> order{0};
+  seen[0] = 1;
+  for (size_t k = 0; k < order.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      const int f = order[k], h = g.neighbour(f, i);
+      if (seen[h]) continue;
+      seen[h] = 1;
+      parent_edge[h] = g.face_edges(f, i);
+      order.push_back(h);
+    }
+  return order;
+}
 namespace {
 
 std::string prefix(const std::string& source) { return source.empty() ? std::string("gparam: ") : source + ": "; }

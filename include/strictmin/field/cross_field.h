@@ -99,6 +99,10 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& graph, co
 CrossField cross_field_from_directions(const Eigen::MatrixXd& directions, const FaceFrames& frames,
                                        const std::string& source = "");
 
+// Multiplies the field u by the global rotation that gives face f a direction along d
+// (projected into its plane).
+void pin_field_rotation(Eigen::VectorXcd& u, int f, const Eigen::Vector3d& d, const FaceFrames& frames);
+
 // Smoothness energy E(u) of any field u (#F).
 double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames);
 

@@ -31,6 +31,10 @@ struct SurfaceGraph {
   int euler_characteristic() const { return num_vertices - num_edges() + num_faces; }
 };
 
+// A breadth-first spanning tree of the dual graph from face 0: the faces in visiting order,
+// and in parent_edge each face's edge to its parent (-1 for face 0).
+std::vector<int> dual_spanning_tree(const SurfaceGraph& graph, std::vector<int>& parent_edge);
+
 // Throws InputError (naming `source`) unless the mesh is a closed, connected, consistently
 // oriented 2-manifold triangle mesh in 3D: several components, a boundary, non-manifold
 // edges or vertices and tetrahedra are refused with the offending element.
