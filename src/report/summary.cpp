@@ -149,8 +149,8 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["method"] = method_name(o.solver.method);
   s["measure"] = measure_name(o.measure);
   s["field"] = o.cones ? std::string("cones") : field;
-  s["field_parallel"] = o.parallel_field || o.cones.has_value();
-  if (o.cones || o.parallel_field) s["cones_missed"] = g.cones_missed;
+  s["field_parallel"] = o.field_is_parallel();
+  if (o.field_is_parallel()) s["cones_missed"] = g.cones_missed;
   if (o.parallel_field && !o.cones) s["field_energy_before_parallel"] = g.field_energy_before_parallel;
   s["field_energy"] = g.field.energy;
   s["elements"] = mesh.num_elements();

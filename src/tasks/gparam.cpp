@@ -36,8 +36,8 @@ std::string fixed(double seconds) {
 }
 
 
-// GParamOptions::parallel_field: the parallel field with the computed field's singularities
-// (the same quarters, so out.quarters stands); the computed field's counters are kept.
+// GParamOptions::parallel_field: the computed field replaced by the parallel field with its
+// singularities (out.quarters); the computed field's counters and timings are kept.
 void make_parallel(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   CrossField parallel = cone_cross_field(mesh, out.graph, out.frames, out.quarters, o.field_options);

@@ -43,6 +43,9 @@ struct GParamOptions {
   LocalGlobalOptions local_global;
   std::function<void(const std::string&)> progress;  // one line per phase
 
+  // Whether the field used is parallel between its singularities (cones or parallel_field).
+  bool field_is_parallel() const { return parallel_field || cones.has_value(); }
+
   // Which field the run computes or takes: "given" (field set), "cones" (cones set),
   // "curvature", "unit" (field_options.unit) or "smoothest".
   const char* field_kind() const {
