@@ -18,9 +18,11 @@
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/tasks/gparam.h"
+#include "test_meshes.h"
 
 using namespace strictmin;
 using strictmin::test_support::expect_input_error;
+using strictmin::test_support::shared_closed_mesh;
 
 namespace {
 
@@ -185,14 +187,6 @@ TEST(ConeFile, RoundTripAndErrorsNameTheLine) {
   expect_input_error([&] { read_cone_file(write("3.14159265358979 1\n"), 1); }, {"line 1", "one number"});
   EXPECT_EQ(read_cone_file(write("# a comment\n4.71238898038469  # index 1/4\n\n"), 1), std::vector<int>{1});
   std::filesystem::remove_all(dir);
-}
-
-const Mesh* shared_closed_mesh(const std::string& name) {
-  static std::map<std::string, Mesh> cache;
-  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / (name + ".obj");
-  if (!std::filesystem::exists(file)) return nullptr;
-  if (!cache.count(name)) cache[name] = read_mesh(file.string());
-  return &cache[name];
 }
 
 // --parallel on the small shared meshes (genus 0 and 4), measured 2026-11-26: E cow 3033 ->

@@ -30,6 +30,7 @@
 #include "test_meshes.h"
 
 using namespace strictmin;
+using strictmin::test_support::shared_closed_mesh;
 
 namespace {
 
@@ -364,14 +365,6 @@ TEST(SharedMeshes, PoincareHopfCutAndL2) {
   }
 }
 
-const Mesh* small_closed_mesh(const std::string& name) {
-  static std::map<std::string, Mesh> cache;
-  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / (name + ".obj");
-  if (!std::filesystem::exists(file)) return nullptr;
-  if (!cache.count(name)) cache[name] = read_mesh(file.string());
-  return &cache[name];
-}
-
 // Strict order on the small shared meshes (genus 0 and 3): linf below l2, relax and linf
 // tie at the top (relax never raises the maximum), and seams hold after every method.
 // The unit field on the small shared meshes: E at least a quarter below the smoothest
@@ -380,7 +373,7 @@ const Mesh* small_closed_mesh(const std::string& name) {
 // 0.434 -> 0.378), its seams holding.
 TEST(SharedMeshes, UnitFieldIsSmootherAndLowersTheMaximum) {
   for (const char* name : {"cow", "fertility"}) {
-    const Mesh* m = small_closed_mesh(name);
+    const Mesh* m = shared_closed_mesh(name);
     if (!m) GTEST_SKIP() << "no closed/" << name << ".obj under " << STRICTMIN_SHARED_DATA;
     GParamOptions o;
     o.solver.method = Method::Linf;
@@ -401,7 +394,7 @@ TEST(SharedMeshes, UnitFieldIsSmootherAndLowersTheMaximum) {
 
 TEST(SharedMeshes, StrictOrderAndSeams) {
   for (const char* name : {"cow", "fertility"}) {
-    const Mesh* m = small_closed_mesh(name);
+    const Mesh* m = shared_closed_mesh(name);
     if (!m) GTEST_SKIP() << "no closed/" << name << ".obj under " << STRICTMIN_SHARED_DATA;
     std::map<Method, double> top;
     std::map<Method, Eigen::VectorXd> distortion;
@@ -445,7 +438,7 @@ TEST(SharedMeshes, StrictOrderAndSeams) {
 // relative gap of each level's own criterion) by the eliminated systems, each level below
 // the one before, with the seams held.
 TEST(SharedMeshes, DirectLevelsCertifyOnTheEliminatedSeams) {
-  const Mesh* m = small_closed_mesh("cow");
+  const Mesh* m = shared_closed_mesh("cow");
   if (!m) GTEST_SKIP() << "no closed/cow.obj under " << STRICTMIN_SHARED_DATA;
   GParamOptions o;
   o.solver.method = Method::Direct;
@@ -470,7 +463,7 @@ TEST(SharedMeshes, DirectLevelsCertifyOnTheEliminatedSeams) {
 // them). Pinned groups on the seams translate with them: every level certified within the
 // level gap, each below the one before, the seams exact.
 TEST(SharedMeshes, DirectPinsOnTheSeams) {
-  const Mesh* m = small_closed_mesh("cow");
+  const Mesh* m = shared_closed_mesh("cow");
   if (!m) GTEST_SKIP() << "no closed/cow.obj under " << STRICTMIN_SHARED_DATA;
   GParamOptions o;
   o.curvature_field = true;
@@ -499,7 +492,7 @@ TEST(SharedMeshes, DirectPinsOnTheSeams) {
 // parallel (the dual tree's root, face 0, moves with the relabelling: the field's global
 // angle is not fixed, the figures are).
 void expect_invariance(bool unit_field, bool parallel = false) {
-  const Mesh* cow = small_closed_mesh("cow");
+  const Mesh* cow = shared_closed_mesh("cow");
   if (!cow) GTEST_SKIP() << "no closed/cow.obj under " << STRICTMIN_SHARED_DATA;
   GParamOptions o;
   o.field_options.unit = unit_field;

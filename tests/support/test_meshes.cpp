@@ -2,15 +2,26 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <filesystem>
 #include <functional>
+#include <map>
 #include <random>
 #include <vector>
 
+#include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/tasks/gparam.h"
 
 namespace strictmin::test_support {
+
+const Mesh* shared_closed_mesh(const std::string& name) {
+  static std::map<std::string, Mesh> cache;
+  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "closed" / (name + ".obj");
+  if (!std::filesystem::exists(file)) return nullptr;
+  if (!cache.count(name)) cache[name] = read_mesh(file.string());
+  return &cache[name];
+}
 
 Eigen::VectorXd sorted_down(Eigen::VectorXd values) {
   std::sort(values.data(), values.data() + values.size(), std::greater<>());

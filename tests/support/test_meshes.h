@@ -1,5 +1,7 @@
 #pragma once
 // Test problems shared by several test files.
+#include <string>
+
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
 
@@ -26,6 +28,10 @@ Problem handle_as_equalities(const Problem& p, int vertex);
 // A cells_x x cells_y grid of [0, length] x [0, height] whose two ends are turned by +angle
 // (left) and -angle (right) about their centres (handles), targets the identity.
 Problem bent_bar(int cells_x, int cells_y, double length, double height, double angle);
+
+// The mesh closed/NAME.obj of the shared data (read once per test program), or nullptr when
+// the shared data is absent (the caller skips).
+const Mesh* shared_closed_mesh(const std::string& name);
 
 // The seamless problem of a closed surface (tasks/gparam.h: the smoothest field, its cut, the
 // default edge length), as global parametrization builds it before its solve.
