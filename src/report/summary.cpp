@@ -151,7 +151,7 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["field"] = o.cones ? std::string("cones") : field;
   s["field_parallel"] = o.field_is_parallel();
   if (o.field_is_parallel()) s["cones_missed"] = g.cones_missed;
-  if (o.parallel_field && !o.cones) s["field_energy_before_parallel"] = g.field_energy_before_parallel;
+  if (o.makes_field_parallel()) s["field_energy_before_parallel"] = g.field_energy_before_parallel;
   s["field_energy"] = g.field.energy;
   s["elements"] = mesh.num_elements();
   s["vertices"] = mesh.num_vertices();

@@ -62,7 +62,7 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
   std::vector<int> wanted = o.cones ? *o.cones : std::vector<int>();
-  if (o.parallel_field && !o.cones) {
+  if (o.makes_field_parallel()) {
     wanted = out.quarters;
     make_parallel(mesh, o, out);
     out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
@@ -81,7 +81,7 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
                         std::to_string(out.field.eigen_energy)
                   : std::string()) +
             ")";
-  if (o.parallel_field && !o.cones)
+  if (o.makes_field_parallel())
     split += ", made parallel in " + fixed(t.parallel_s) + " s from energy " + std::to_string(out.field_energy_before_parallel);
   if (out.cones_missed > 0)
     split += "; warning: " + std::to_string(out.cones_missed) +

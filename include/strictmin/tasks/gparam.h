@@ -45,6 +45,8 @@ struct GParamOptions {
 
   // Whether the field used is parallel between its singularities (cones or parallel_field).
   bool field_is_parallel() const { return parallel_field || cones.has_value(); }
+  // Whether a computed field is replaced by the parallel one (a cone field is parallel already).
+  bool makes_field_parallel() const { return parallel_field && !cones; }
 
   // Which field the run computes or takes: "given" (field set), "cones" (cones set),
   // "curvature", "unit" (field_options.unit) or "smoothest".
