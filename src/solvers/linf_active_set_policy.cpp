@@ -19,10 +19,15 @@ void ActiveSetPolicy::consider(const socp::IpmState& s, const Eigen::VectorXd& d
   const double tol = options.gap_tolerance * std::max(1.0, std::abs(best.k));
   if (!options.active_set_bounds || options.gap_tolerance > kTightestLooseTolerance) return;
   if (!std::isfinite(best.k) || best.k - best.lower_bound <= tol) return;
-  const double certified_gap = best.k - best.lower_bound;
+  // Settled is judged on the iterates' own certificate (and the attempts' bounds below):
+  // a probe's bound closes the certified gap by itself and would hold the attempts back.
+  const double certified_gap = best.k - (attempts_ > 0 ? best.lower_bound : best.iterate_bound);
   const bool near = best.k - info.dobj <= kNear * tol || info.gap <= kNear * tol;
   const bool settled = certified_gap <= kSettled * tol && best.previous_k - k <= kSettledStep * certified_gap;
-  if (!near && !settled) return;
+  if (!near && !settled) {
+    if (due_iteration_ == info.iteration) probe(s, d, tol, best);
+    return;
+  }
   // A restriction tried before that misses part of the dual's support gives a bound below
   // the optimum: retried (wider) only once the iterates' dual objective passes that bound or
   // their gap falls well below the gap left to it. Otherwise only the map is tried again.
@@ -44,6 +49,41 @@ void ActiveSetPolicy::consider(const socp::IpmState& s, const Eigen::VectorXd& d
   }
   elements_ = chosen.size();
   try_bound(chosen, mp_.problem.with_free_dofs(s.x), tol, best);
+}
+
+bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
+  const LinfOptions& options = mp_.options;
+  if (!options.active_set_bounds || !options.active_set_probes || options.gap_tolerance > kTightestLooseTolerance)
+    return false;
+  if (mp_.prog.num_eq() == 0 || probes_ >= kMaxProbes || attempts_ > 0 ||
+      !(info.gap <= kProbeGap * std::max(1.0, std::abs(info.pobj))))
+    return false;
+  const double tol = options.gap_tolerance * std::max(1.0, std::abs(k));
+  probe_elements_ = near_maximum(d, k, kReach * std::max(info.gap, tol), tol);
+  if (probe_elements_.size() * kProbeDivisor > static_cast<size_t>(mp_.problem.num_elements())) return false;
+  due_iteration_ = info.iteration;
+  return true;
+}
+
+void ActiveSetPolicy::probe(const socp::IpmState& s, const Eigen::VectorXd& d, double tol, BestSoFar& best) {
+  ++probes_;
+  due_iteration_ = -1;
+  const Eigen::MatrixXd X = mp_.problem.with_free_dofs(s.x);
+  const double bound = restricted_bound(probe_elements_, X, best);
+  // A restriction whose bound is below the iterates' own certificate misses the dual's
+  // support: its map would not reach the optimum either.
+  if (!(bound > best.iterate_bound) || best.k - best.lower_bound <= tol) return;
+  // The map moves only its own elements' vertices, so every element outside it keeps its
+  // distortion: it can reach the bound only if it holds every element above the bound. Near
+  // the optimum the elements within reach are those; an early iterate's maximum is further
+  // above the optimum, and more elements lie between.
+  std::vector<int> elements = probe_elements_;
+  std::vector<char> in(mp_.problem.num_elements(), 0);
+  for (int e : elements) in[e] = 1;
+  for (int i = 0; i < mp_.num_free_cones; ++i)
+    if (d[i] >= bound - tol && !in[mp_.elems[i]]) elements.push_back(mp_.elems[i]);
+  if (elements.size() * kProbeDivisor <= static_cast<size_t>(mp_.problem.num_elements()))
+    restricted_map(elements, X, best);
 }
 
 std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
@@ -68,6 +108,10 @@ std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double 
 
 void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) {
   ++maps_;
+  restricted_map(chosen, X, best);
+}
+
+void ActiveSetPolicy::restricted_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const {
   const Problem& p = mp_.problem;
   double growth = kMapGrowth;
   if (mp_.prog.num_eq() > 0 && !chosen.empty())
@@ -90,17 +134,26 @@ void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::Matri
 
 void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol,
                                 BestSoFar& best) {
+  bound_ = restricted_bound(chosen, X, best);
+  if (best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol) try_map(chosen, X, best);
+}
+
+}  // namespace strictmin::linf_detail
+
+namespace strictmin::linf_detail {
+
+double ActiveSetPolicy::restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X,
+                                         BestSoFar& best) const {
   const auto t0 = std::chrono::steady_clock::now();
   const ActiveSetSolve b = active_set_bound(mp_.problem, chosen, X, effective_bounds_, mp_.options);
   if (mp_.options.verbose)
     std::fprintf(stderr, "linf: active-set bound %.12g from %d elements (%d iterations, %.3f s)\n", b.lower_bound,
                  b.elements, b.iterations, seconds_since(t0));
-  bound_ = b.lower_bound;
   if (b.lower_bound > best.lower_bound) {
     best.lower_bound = b.lower_bound;
     best.element_multipliers = b.multipliers;
   }
-  if (best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol) try_map(chosen, X, best);
+  return b.lower_bound;
 }
 
 }  // namespace strictmin::linf_detail

@@ -55,6 +55,11 @@ struct LinfOptions {
   // src/solvers/linf_active_set.h). It certifies several iterations before the iterates'
   // own dual does.
   bool active_set_bounds = true;
+  // With equalities (the seams of global parametrization), also probe earlier: the same
+  // bound and map from the iterate where the method's own gap falls below 5e-2, when at most
+  // 1/300 of the elements are within reach of the maximum (docs/linf.md). Only with
+  // active_set_bounds.
+  bool active_set_probes = true;
   // Interior-point internals (see src/solvers/socp/settings.h).
   double step_fraction = 0.95;
   double regularization = 1e-15;
