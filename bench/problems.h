@@ -46,10 +46,12 @@ inline Problem bar_problem(int n) {
 }
 
 // L-infinity options of the benchmarks: STRICTMIN_LINF_VERBOSE=1|2 prints the solver's
-// per-iteration lines and phase timers.
+// per-iteration lines and phase timers; STRICTMIN_LINF_NO_PROBES=1 turns the active-set
+// probes off (LinfOptions::active_set_probes), for A/B comparisons.
 inline LinfOptions linf_options_from_env() {
   LinfOptions o;
   if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
+  if (std::getenv("STRICTMIN_LINF_NO_PROBES")) o.active_set_probes = false;
   if (o.verbose)
     o.progress = [](const IterationRecord& r) {
       std::fprintf(stderr, "linf %3d k %.12f certified bound %.12f gap %.2e %.3f s\n", r.iteration, r.max_distortion,

@@ -138,10 +138,6 @@ void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::Mat
   if (best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol) try_map(chosen, X, best);
 }
 
-}  // namespace strictmin::linf_detail
-
-namespace strictmin::linf_detail {
-
 double ActiveSetPolicy::restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X,
                                          BestSoFar& best) const {
   const auto t0 = std::chrono::steady_clock::now();
