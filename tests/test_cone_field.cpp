@@ -165,6 +165,13 @@ TEST(ConeField, RefusesConesThatBreakPoincareHopf) {
                      {"cones.txt", "add up to 9/4", "Euler characteristic 2"});
   q.pop_back();
   expect_input_error([&] { cone_cross_field(s.mesh, s.graph, s.frames, q); }, {"cone indices for"});
+  // Options are checked as by the smoothest field: a non-finite pin direction would make every
+  // face's field NaN.
+  CrossFieldOptions nan_pin;
+  nan_pin.pin_face = 0;
+  nan_pin.pin_direction = Eigen::Vector3d(NAN, 0, 0);
+  expect_input_error([&] { cone_cross_field(s.mesh, s.graph, s.frames, quarters_of_smoothest(s), nan_pin); },
+                     {"cross field options", "pin_direction"});
 }
 
 TEST(ConeFile, RoundTripAndErrorsNameTheLine) {

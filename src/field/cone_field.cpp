@@ -189,6 +189,8 @@ void check_cone_sum(const SurfaceGraph& g, const std::vector<int>& quarters, con
 CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
                             const std::vector<int>& quarters, const CrossFieldOptions& options,
                             const std::string& source) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("cross field options: " + why);
   check_cone_sum(g, quarters, source);
   const Eigen::VectorXd w = edge_weights(mesh, g, fr);
   // 1. The exact part: the potential's rotated gradient sets every vertex's holonomy.

@@ -28,7 +28,7 @@ namespace strictmin {
 // The field with exactly the cones `quarters` (#V, each vertex's index in quarters; they
 // must add up to 4 chi). Pins the global rotation as options.pin_face / pin_direction (face
 // 0 along its first edge otherwise). Throws InputError (naming `source`) for a wrong size or
-// a sum other than 4 chi.
+// a sum other than 4 chi, and for invalid options (CrossFieldOptions::is_valid).
 CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
                             const std::vector<int>& quarters, const CrossFieldOptions& options = {},
                             const std::string& source = "");
