@@ -203,11 +203,8 @@ TEST(SharedMeshes, ParallelFieldIsSmootherAndLowersTheMaximum) {
   for (const char* name : {"cow", "fertility"}) {
     const Mesh* m = shared_closed_mesh(name);
     if (!m) GTEST_SKIP() << "no closed/" << name << ".obj under " << STRICTMIN_SHARED_DATA;
-    GParamOptions o;
-    o.solver.method = Method::Linf;
-    const GParamOutcome smooth = global_parametrize(*m, o);
-    o.parallel_field = true;
-    const GParamOutcome parallel = global_parametrize(*m, o);
+    const auto runs = test_support::linf_against_smoothest(*m, [](GParamOptions& o) { o.parallel_field = true; });
+    const GParamOutcome &smooth = runs.smoothest, &parallel = runs.variant;
     EXPECT_EQ(parallel.quarters, smooth.quarters) << name;
     EXPECT_EQ(parallel.cones_missed, 0) << name;
     EXPECT_NEAR(parallel.field_energy_before_parallel, smooth.field.energy, 1e-9 * smooth.field.energy) << name;

@@ -375,11 +375,8 @@ TEST(SharedMeshes, UnitFieldIsSmootherAndLowersTheMaximum) {
   for (const char* name : {"cow", "fertility"}) {
     const Mesh* m = shared_closed_mesh(name);
     if (!m) GTEST_SKIP() << "no closed/" << name << ".obj under " << STRICTMIN_SHARED_DATA;
-    GParamOptions o;
-    o.solver.method = Method::Linf;
-    const GParamOutcome smooth = global_parametrize(*m, o);
-    o.field_options.unit = true;
-    const GParamOutcome unit = global_parametrize(*m, o);
+    const auto runs = test_support::linf_against_smoothest(*m, [](GParamOptions& o) { o.field_options.unit = true; });
+    const GParamOutcome &smooth = runs.smoothest, &unit = runs.variant;
     EXPECT_NEAR(unit.field.eigen_energy, smooth.field.energy, 1e-9 * smooth.field.energy) << name;
     EXPECT_LT(unit.field.energy, 0.75 * smooth.field.energy) << name;
     EXPECT_LE(unit.singular.size(), smooth.singular.size()) << name;

@@ -81,4 +81,14 @@ Problem seamless_problem(const Mesh& mesh) {
   return global_parametrize(mesh, o, "test mesh").problem;
 }
 
+FieldComparison linf_against_smoothest(const Mesh& mesh, const std::function<void(GParamOptions&)>& vary) {
+  GParamOptions o;
+  o.solver.method = Method::Linf;
+  FieldComparison out;
+  out.smoothest = global_parametrize(mesh, o);
+  vary(o);
+  out.variant = global_parametrize(mesh, o);
+  return out;
+}
+
 }  // namespace strictmin::test_support

@@ -1,9 +1,11 @@
 #pragma once
 // Test problems shared by several test files.
+#include <functional>
 #include <string>
 
 #include "strictmin/mesh/mesh.h"
 #include "strictmin/problem/problem.h"
+#include "strictmin/tasks/gparam.h"
 
 namespace strictmin::test_support {
 
@@ -36,5 +38,13 @@ const Mesh* shared_closed_mesh(const std::string& name);
 // The seamless problem of a closed surface (tasks/gparam.h: the smoothest field, its cut, the
 // default edge length), as global parametrization builds it before its solve.
 Problem seamless_problem(const Mesh& mesh);
+
+// Global parametrization by L-infinity with the smoothest field and with a variant of it
+// (`vary` changes the options: the unit field, the parallel field...), for the tests that
+// compare a field with the smoothest one.
+struct FieldComparison {
+  GParamOutcome smoothest, variant;
+};
+FieldComparison linf_against_smoothest(const Mesh& mesh, const std::function<void(GParamOptions&)>& vary);
 
 }  // namespace strictmin::test_support
