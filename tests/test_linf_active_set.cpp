@@ -264,9 +264,10 @@ TEST(ActiveSet, RealSurfacesAgreeWithAndWithout) {
 // when few elements are near the maximum. With and without them the optimum is the same,
 // each certified bound lies below the other run's k, and where a probe certifies it ends the
 // solve sooner (elephant: its second probe, at a method gap of 1.2e-5, one iteration before
-// the late attempts would start; its first, at 9e-3, bounds right but its map misses).
+// the late attempts would start; its first, at 9e-3, bounds right but its map misses; horse:
+// its second, at 1.8e-3, three iterations early).
 TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
-  for (const char* name : {"cow", "fertility", "elephant"}) {
+  for (const char* name : {"cow", "fertility", "elephant", "horse"}) {
     const Mesh* mesh = test_support::shared_closed_mesh(name);
     if (!mesh) {
       GTEST_SKIP() << name << " is absent";
@@ -285,6 +286,11 @@ TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
     EXPECT_LE(a.iterations, b.iterations) << name;
     if (std::string(name) == "elephant") {
       EXPECT_LT(a.iterations, b.iterations);
+    }
+    // Horse's probes end it only with their maps held where the iterates are heading (12
+    // iterations against 15; held at the iterate, 14 at best).
+    if (std::string(name) == "horse") {
+      EXPECT_LE(a.iterations, b.iterations - 2);
     }
     std::printf("%s (%d faces): with probes k %.12f bound %.12f (%d iterations); without k %.12f bound %.12f (%d)\n",
                 name, p.num_elements(), ka, a.lower_bound, a.iterations, kb, b.lower_bound, b.iterations);

@@ -7,7 +7,8 @@
 //   stays above a bound close to it (at most kMaxMaps maps);
 // - before those, probes: the bound and at once the map, on iterates where the method's own
 //   gap is below kProbeGap and few elements are within reach of the maximum (at most
-//   kMaxProbes, one an iteration; they do not count against the attempts above).
+//   kMaxProbes, one an iteration; they do not count against the attempts above). A probe's
+//   map holds the other vertices where the iterates are heading (see probe()).
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -56,15 +57,15 @@ class ActiveSetPolicy {
   static constexpr int kCapDivisor = 20;
   // Probes. The restriction can hold the dual's support long before the main iterates'
   // certificate closes: on igea_100k (seams) the 23 elements nearest the maximum at a method
-  // gap of 4e-2 give the optimum, four iterations before the tests above would try. Where
-  // the support is large the map from such an early iterate misses (horse: 1,910-5,784
-  // elements, 1e-5 to 1e-8 above the optimum, 0.06-0.24 s each against 0.22 s an
-  // iteration: their rim holds the seams' translations), so a probe is made only when at
-  // most 1 / kProbeDivisor of the elements are within reach: it then costs a small fraction
-  // of an iteration (1/100: horse's probes fire, miss, and cost 2%). kProbeGap is relative
-  // to max(1, |k|), as the tolerance.
+  // gap of 4e-2 give the optimum, four iterations before the tests above would try; on horse
+  // the 1,101 elements within reach at a gap of 1.8e-3 bound it to 3e-9, three iterations
+  // early. A probe is made only when at most 1 / kProbeDivisor of the elements are within
+  // reach, so that a probe that misses costs a fraction of an iteration (horse: 0.05 s for
+  // the bound and 0.1 s for the map, against 0.22 s an iteration). 80 lets horse's probe at
+  // 1,101 elements (1/88) through; nefertiti's probes then fire too (1/85 to 1/270) and miss,
+  // about 3%; 1/300 kept them all off. kProbeGap is relative to max(1, |k|), as the tolerance.
   static constexpr double kProbeGap = 5e-2;
-  static constexpr int kProbeDivisor = 300;
+  static constexpr int kProbeDivisor = 80;
   static constexpr int kMaxProbes = 3;
 
   ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds);
@@ -76,12 +77,14 @@ class ActiveSetPolicy {
   // Whether consider() will probe this iterate (distortions d, its k): the caller then
   // certifies it. Chooses the probe's elements.
   bool probe_due(const Eigen::VectorXd& d, double k, const socp::IpmIteration& info);
+  // Called with every iterate, after the two above: the probes' maps extrapolate from it.
+  void remember(const Eigen::VectorXd& x);
 
  private:
   std::vector<int> near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const;
   void try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best);
   void try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol, BestSoFar& best);
-  void probe(const socp::IpmState& s, const Eigen::VectorXd& d, double tol, BestSoFar& best);
+  void probe(const socp::IpmState& s, double tol, BestSoFar& best);
   // The restricted solves themselves: each raises best where it does better, and returns its bound / nothing.
   double restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
   void restricted_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
@@ -96,6 +99,7 @@ class ActiveSetPolicy {
   int probes_ = 0;
   int due_iteration_ = -1;   // the iterate probe_due chose probe_elements_ for
   std::vector<int> probe_elements_;
+  Eigen::VectorXd previous_x_;  // the iterate before the current one (probes only)
 };
 
 }  // namespace strictmin::linf_detail

@@ -149,6 +149,7 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
       active_set.consider(s, d, k, info, best);
     }
     best.previous_k = k;
+    active_set.remember(s.x);
     last_certified = certified;
     // 3. The record, and whether to stop.
     record(info.iteration, k);
