@@ -265,9 +265,9 @@ TEST(ActiveSet, RealSurfacesAgreeWithAndWithout) {
 // each certified bound lies below the other run's k, and where a probe certifies it ends the
 // solve sooner (elephant: its second probe, at a method gap of 1.2e-5, one iteration before
 // the late attempts would start; its first, at 9e-3, bounds right but its map misses; horse:
-// its second, at 1.8e-3, three iterations early).
+// its second, at 1.3e-2, five iterations early; nefertiti: its first, at 4e-2, four early).
 TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
-  for (const char* name : {"cow", "fertility", "elephant", "horse"}) {
+  for (const char* name : {"cow", "fertility", "elephant", "horse", "nefertiti"}) {
     const Mesh* mesh = test_support::shared_closed_mesh(name);
     if (!mesh) {
       GTEST_SKIP() << name << " is absent";
@@ -287,10 +287,11 @@ TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
     if (std::string(name) == "elephant") {
       EXPECT_LT(a.iterations, b.iterations);
     }
-    // Horse's probes end it only with their maps held where the iterates are heading (12
-    // iterations against 15; held at the iterate, 14 at best).
-    if (std::string(name) == "horse") {
-      EXPECT_LE(a.iterations, b.iterations - 2);
+    // Horse's and nefertiti's probes end them only by looking where the iterates are heading
+    // (10 and 11 iterations against 15 and 15; with the iterate's elements and map alone, 14
+    // and 15 at best; with the map held at the heading, 12 and 15).
+    if (std::string(name) == "horse" || std::string(name) == "nefertiti") {
+      EXPECT_LE(a.iterations, b.iterations - 4) << name;
     }
     std::printf("%s (%d faces): with probes k %.12f bound %.12f (%d iterations); without k %.12f bound %.12f (%d)\n",
                 name, p.num_elements(), ka, a.lower_bound, a.iterations, kb, b.lower_bound, b.iterations);

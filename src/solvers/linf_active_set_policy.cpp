@@ -52,7 +52,8 @@ void ActiveSetPolicy::consider(const socp::IpmState& s, const Eigen::VectorXd& d
   try_bound(chosen, mp_.problem.with_free_dofs(s.x), tol, best);
 }
 
-bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& d, double k, const socp::IpmIteration& info) {
+bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& x, const Eigen::VectorXd& d, double k,
+                                const socp::IpmIteration& info) {
   const LinfOptions& options = mp_.options;
   if (!options.active_set_bounds || !options.active_set_probes || options.gap_tolerance > kTightestLooseTolerance)
     return false;
@@ -60,10 +61,24 @@ bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& d, double k, const socp::
       !(info.gap <= kProbeGap * std::max(1.0, std::abs(info.pobj))))
     return false;
   const double tol = options.gap_tolerance * std::max(1.0, std::abs(k));
-  probe_elements_ = near_maximum(d, k, kReach * std::max(info.gap, tol), tol);
-  if (probe_elements_.size() * kProbeDivisor > static_cast<size_t>(mp_.problem.num_elements())) return false;
-  due_iteration_ = info.iteration;
-  return true;
+  const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeDivisor;
+  heading_ = previous_x_.size() == x.size() ? Eigen::VectorXd(2 * x - previous_x_) : x;
+  heading_distortions_ = socp::cone_distortions(mp_.prog, heading_);
+  const double heading_top = std::min(k, mp_.max_free(heading_distortions_));
+  const std::vector<int> near_iterate = near_maximum(d, k, kReach * std::max(info.gap, tol), tol);
+  double reach = kHeadingReach * std::max(info.gap, tol);
+  for (int halving = 0; halving <= kHeadingHalvings; ++halving, reach *= 0.5) {
+    heading_elements_ = near_maximum(heading_distortions_, heading_top, reach, tol);
+    probe_elements_ = near_iterate;
+    probe_elements_.insert(probe_elements_.end(), heading_elements_.begin(), heading_elements_.end());
+    std::sort(probe_elements_.begin(), probe_elements_.end());
+    probe_elements_.erase(std::unique(probe_elements_.begin(), probe_elements_.end()), probe_elements_.end());
+    if (probe_elements_.size() <= limit) {
+      due_iteration_ = info.iteration;
+      return true;
+    }
+  }
+  return false;
 }
 
 void ActiveSetPolicy::remember(const Eigen::VectorXd& x) {
@@ -79,24 +94,22 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
   // support: its map would not reach the optimum either.
   if (!(bound > best.iterate_bound) || best.k - best.lower_bound <= tol) return;
   // The map holds every vertex outside its elements, among them (through the seams'
-  // equalities) the cones' places, which move the whole parametrization; an early iterate
+  // equalities) the cones' places, which move the whole parametrization. An early iterate
   // has them off, and its map misses (horse, iteration 10: 1e-5 above the optimum). Held
-  // where the iterates are heading, 2 x_k - x_(k-1) (the last step once more; it meets the
-  // equalities, as both iterates do), the same map lands 2e-8 above (horse: 15 -> 12
-  // iterations). Of the multiples 0.3-3 of the last step, 1 did best.
-  const Eigen::VectorXd heading = previous_x_.size() == s.x.size() ? Eigen::VectorXd(2 * s.x - previous_x_) : s.x;
-  const Eigen::VectorXd d = socp::cone_distortions(mp_.prog, heading);
+  // where the iterates are heading (the last step once more: it meets the equalities, as
+  // both iterates do), the same map lands 2e-8 above, and around the heading's own elements
+  // 4e-10. Of the multiples 0.3-3 of the last step, 1-1.1 did best.
   // The map moves only its own elements' vertices, so every element outside it keeps its
-  // distortion: it can reach the bound only if it holds every element above the bound. Near
-  // the optimum the elements within reach are those; an early iterate's maximum is further
-  // above the optimum, and more elements lie between.
-  std::vector<int> elements = probe_elements_;
+  // distortion: it can reach the bound only if it holds every element above the bound.
+  std::vector<int> elements = heading_elements_;
   std::vector<char> in(mp_.problem.num_elements(), 0);
   for (int e : elements) in[e] = 1;
   for (int i = 0; i < mp_.num_free_cones; ++i)
-    if (d[i] >= bound - tol && !in[mp_.elems[i]]) elements.push_back(mp_.elems[i]);
-  if (elements.size() * kProbeDivisor <= static_cast<size_t>(mp_.problem.num_elements()))
-    restricted_map(elements, mp_.problem.with_free_dofs(heading), best);
+    if (heading_distortions_[i] >= bound - tol && !in[mp_.elems[i]]) elements.push_back(mp_.elems[i]);
+  const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeMapDivisor;
+  if (elements.empty() || elements.size() > limit) return;
+  const double growth = static_cast<double>(limit) / static_cast<double>(elements.size());
+  restricted_map(widen_by_rings(mp_.problem, elements, kMapRings, growth), mp_.problem.with_free_dofs(heading_), best);
 }
 
 std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
@@ -119,18 +132,22 @@ std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double 
 }
 
 
-void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) {
-  ++maps_;
-  restricted_map(chosen, X, best);
-}
-
-void ActiveSetPolicy::restricted_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const {
-  const Problem& p = mp_.problem;
+std::vector<int> ActiveSetPolicy::map_region(const std::vector<int>& chosen) const {
   double growth = kMapGrowth;
   if (mp_.prog.num_eq() > 0 && !chosen.empty())
     growth = std::max(growth, static_cast<double>(kMapMinElements) / static_cast<double>(chosen.size()));
+  return widen_by_rings(mp_.problem, chosen, kMapRings, growth);
+}
+
+void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) {
+  ++maps_;
+  restricted_map(map_region(chosen), X, best);
+}
+
+void ActiveSetPolicy::restricted_map(const std::vector<int>& region, const Eigen::MatrixXd& X, BestSoFar& best) const {
+  const Problem& p = mp_.problem;
   const auto t0 = std::chrono::steady_clock::now();
-  const ActiveSetSolve m = active_set_map(p, widen_by_rings(p, chosen, kMapRings, growth), X, effective_bounds_, mp_.options);
+  const ActiveSetSolve m = active_set_map(p, region, X, effective_bounds_, mp_.options);
   if (mp_.options.verbose)
     std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations, %.3f s)\n", m.elements, m.iterations,
                  seconds_since(t0));

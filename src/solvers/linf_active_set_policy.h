@@ -7,8 +7,8 @@
 //   stays above a bound close to it (at most kMaxMaps maps);
 // - before those, probes: the bound and at once the map, on iterates where the method's own
 //   gap is below kProbeGap and few elements are within reach of the maximum (at most
-//   kMaxProbes, one an iteration; they do not count against the attempts above). A probe's
-//   map holds the other vertices where the iterates are heading (see probe()).
+//   kMaxProbes, one an iteration; they do not count against the attempts above). A probe
+//   looks at where the iterates are heading as well as at the iterate (see probe()).
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -58,14 +58,24 @@ class ActiveSetPolicy {
   // Probes. The restriction can hold the dual's support long before the main iterates'
   // certificate closes: on igea_100k (seams) the 23 elements nearest the maximum at a method
   // gap of 4e-2 give the optimum, four iterations before the tests above would try; on horse
-  // the 1,101 elements within reach at a gap of 1.8e-3 bound it to 3e-9, three iterations
-  // early. A probe is made only when at most 1 / kProbeDivisor of the elements are within
-  // reach, so that a probe that misses costs a fraction of an iteration (horse: 0.05 s for
-  // the bound and 0.1 s for the map, against 0.22 s an iteration). 80 lets horse's probe at
-  // 1,101 elements (1/88) through; nefertiti's probes then fire too (1/85 to 1/270) and miss,
-  // about 3%; 1/300 kept them all off. kProbeGap is relative to max(1, |k|), as the tolerance.
+  // the 1,353 elements nearest the heading's maximum (below) at a gap of 1.3e-2 give it, five
+  // iterations early. kProbeGap is relative to max(1, |k|), as the tolerance.
   static constexpr double kProbeGap = 5e-2;
-  static constexpr int kProbeDivisor = 80;
+  // The heading: 2 x_k - x_(k-1), the last step taken once more (see probe()). Its elements
+  // within kHeadingReach method gaps of its maximum (or k, if lower), the reach halved up to
+  // kHeadingHalvings times to fit the limit below. A probe takes them with the iterate's own
+  // elements within reach: horse's support at iteration 10 lies within 2.3 gaps of the
+  // heading's maximum (the iterate's elements within reach miss part of it), but at 4e-2 only
+  // 4 of igea's 6 are within 3 gaps of the heading's maximum (all within reach of the
+  // iterate's).
+  static constexpr double kHeadingReach = 4;
+  static constexpr int kHeadingHalvings = 2;
+  // A probe is made only when its elements are at most 1 / kProbeDivisor of them, and its map
+  // takes kMapRings rings around the heading's elements while at most 1 / kProbeMapDivisor of
+  // them: a probe that misses then costs under an iteration (horse: 0.06 s for the bound and
+  // 0.05 s for the map, against 0.22 s an iteration).
+  static constexpr int kProbeDivisor = 40;
+  static constexpr int kProbeMapDivisor = 10;
   static constexpr int kMaxProbes = 3;
 
   ActiveSetPolicy(const MainProgram& mp, const Eigen::VectorXd& effective_bounds);
@@ -74,20 +84,22 @@ class ActiveSetPolicy {
   // when it is time, updating best.
   void consider(const socp::IpmState& s, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info,
                 BestSoFar& best);
-  // Whether consider() will probe this iterate (distortions d, its k): the caller then
+  // Whether consider() will probe this iterate (x, its distortions d and k): the caller then
   // certifies it. Chooses the probe's elements.
-  bool probe_due(const Eigen::VectorXd& d, double k, const socp::IpmIteration& info);
-  // Called with every iterate, after the two above: the probes' maps extrapolate from it.
+  bool probe_due(const Eigen::VectorXd& x, const Eigen::VectorXd& d, double k, const socp::IpmIteration& info);
+  // Called with every iterate, after the two above: the next probe's heading starts from it.
   void remember(const Eigen::VectorXd& x);
 
  private:
   std::vector<int> near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const;
+  // The late attempts' map region: chosen and up to kMapRings rings around it (kMapGrowth).
+  std::vector<int> map_region(const std::vector<int>& chosen) const;
   void try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best);
   void try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol, BestSoFar& best);
   void probe(const socp::IpmState& s, double tol, BestSoFar& best);
   // The restricted solves themselves: each raises best where it does better, and returns its bound / nothing.
   double restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
-  void restricted_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
+  void restricted_map(const std::vector<int>& region, const Eigen::MatrixXd& X, BestSoFar& best) const;
 
   const MainProgram& mp_;
   const Eigen::VectorXd& effective_bounds_;
@@ -98,8 +110,10 @@ class ActiveSetPolicy {
   size_t elements_ = 0;      // in the last restriction tried
   int probes_ = 0;
   int due_iteration_ = -1;   // the iterate probe_due chose probe_elements_ for
-  std::vector<int> probe_elements_;
-  Eigen::VectorXd previous_x_;  // the iterate before the current one (probes only)
+  std::vector<int> probe_elements_;    // the probe's bound: the iterate's and the heading's
+  std::vector<int> heading_elements_;  // near the heading's maximum: the probe's map
+  Eigen::VectorXd previous_x_;         // the iterate before the current one (probes only)
+  Eigen::VectorXd heading_, heading_distortions_;
 };
 
 }  // namespace strictmin::linf_detail

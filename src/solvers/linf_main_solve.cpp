@@ -141,7 +141,7 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
     }
     // 2. Its certificate (and the active-set solves) when it can matter.
     const double near = kCertifyNear * options.gap_tolerance * std::max(1.0, std::abs(best.k));
-    const bool probe = active_set.probe_due(d, k, info);
+    const bool probe = active_set.probe_due(s.x, d, k, info);
     const bool certified = probe || options.progress || info.iteration == 0 || !std::isfinite(best.k) ||
                            best.k - info.dobj <= near || info.gap <= near || info.kkt_residual > kUnreliableDirections;
     if (certified) {
