@@ -265,7 +265,8 @@ TEST(ActiveSet, RealSurfacesAgreeWithAndWithout) {
 // each certified bound lies below the other run's k, and where a probe certifies it ends the
 // solve sooner (elephant: its second probe, at a method gap of 1.2e-5, one iteration before
 // the late attempts would start; its first, at 9e-3, bounds right but its map misses; horse:
-// its second, at 1.3e-2, five iterations early; nefertiti: its first, at 4e-2, four early).
+// its second, at 1.3e-2, five iterations early; nefertiti: its first, at 4e-2, four early;
+// cow: its second, at 1.5e-4, two early).
 TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
   for (const char* name : {"cow", "fertility", "elephant", "horse", "nefertiti"}) {
     const Mesh* mesh = test_support::shared_closed_mesh(name);
@@ -286,6 +287,11 @@ TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
     EXPECT_LE(a.iterations, b.iterations) << name;
     if (std::string(name) == "elephant") {
       EXPECT_LT(a.iterations, b.iterations);
+    }
+    // Cow's probe map holds the optimum once it takes rings up to 300 elements (9 iterations
+    // against 11; with 2 rings, 81 elements, 11).
+    if (std::string(name) == "cow") {
+      EXPECT_LE(a.iterations, b.iterations - 2);
     }
     // Horse's and nefertiti's probes end them only by looking where the iterates are heading
     // (10 and 11 iterations against 15 and 15; with the iterate's elements and map alone, 14
