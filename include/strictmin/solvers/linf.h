@@ -56,8 +56,9 @@ struct LinfOptions {
   // own dual does.
   bool active_set_bounds = true;
   // With equalities (the seams of global parametrization), also probe earlier: the same
-  // bound and map from the iterate where the method's own gap falls below 5e-2, when at most
-  // 1/300 of the elements are within reach of the maximum (docs/linf.md). Only with
+  // bound and map from the iterate where the method's own gap falls below 5e-2, on the
+  // elements near the maximum of the iterate and of where the iterates are heading, when
+  // they are at most 1/40 of the elements (docs/linf.md, "Probes"). Only with
   // active_set_bounds.
   bool active_set_probes = true;
   // Interior-point internals (see src/solvers/socp/settings.h).
