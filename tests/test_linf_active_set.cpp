@@ -235,6 +235,12 @@ TEST(ActiveSet, WideningAddsRingsWithinTheGrowthLimit) {
   }
   const std::vector<int> limited = widen_by_rings(p, one, 5, 1.5);
   EXPECT_EQ(limited, one);  // the first ring already more than 1.5 times as many
+  // Past min_rings, rings only until the set holds `enough` (the probes' maps).
+  const std::vector<int> two = widen_by_rings(p, one, 2, 1000.0), three = widen_by_rings(p, one, 3, 1000.0);
+  ASSERT_GT(three.size(), two.size());
+  EXPECT_EQ(widen_by_rings(p, one, 8, 1000.0, 2, two.size()), two);
+  EXPECT_EQ(widen_by_rings(p, one, 8, 1000.0, 2, two.size() + 1), three);
+  EXPECT_EQ(widen_by_rings(p, one, 8, 1000.0, 2, 1), two);  // at least min_rings
 }
 
 // Real surfaces (parametrization with three pins): with and without the active-set solves,

@@ -133,12 +133,14 @@ ActiveSetSolve active_set_map(const Problem& p, const std::vector<int>& elements
   return solve_restricted(p, elements, X, bounds, options, true);
 }
 
-std::vector<int> widen_by_rings(const Problem& p, const std::vector<int>& elements, int rings, double max_growth) {
+std::vector<int> widen_by_rings(const Problem& p, const std::vector<int>& elements, int rings, double max_growth,
+                                int min_rings, size_t enough) {
   std::vector<int> out = elements;
   std::vector<char> in(p.num_elements(), 0), touched(p.num_vertices, 0);
   for (int e : out) in[e] = 1;
   const double limit = max_growth * static_cast<double>(elements.size());
   for (int ring = 0; ring < rings; ++ring) {
+    if (min_rings >= 0 && ring >= min_rings && out.size() >= enough) break;
     for (int e : out)
       for (int a = 0; a < p.corners(); ++a) touched[p.elements(e, a)] = 1;
     std::vector<int> next;

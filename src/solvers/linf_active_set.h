@@ -46,7 +46,9 @@ ActiveSetSolve active_set_map(const Problem& p, const std::vector<int>& elements
                               const Eigen::VectorXd& bounds, const LinfOptions& options);
 
 // elements and up to `rings` rings of elements around them (sharing a vertex), ring by ring
-// while the set stays within max_growth times its first size.
-std::vector<int> widen_by_rings(const Problem& p, const std::vector<int>& elements, int rings, double max_growth);
+// while the set stays within max_growth times its first size; after the first min_rings
+// rings (all of them if negative) it stops once it holds `enough` elements.
+std::vector<int> widen_by_rings(const Problem& p, const std::vector<int>& elements, int rings, double max_growth,
+                                int min_rings = -1, size_t enough = 0);
 
 }  // namespace strictmin

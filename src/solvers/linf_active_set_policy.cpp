@@ -109,12 +109,8 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
   const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeMapDivisor;
   if (elements.empty() || elements.size() > limit) return;
   const double growth = static_cast<double>(limit) / static_cast<double>(elements.size());
-  std::vector<int> region;
-  for (int rings = kMapRings; rings <= kProbeMapRings; ++rings) {
-    region = widen_by_rings(mp_.problem, elements, rings, growth);
-    if (region.size() >= kMapMinElements) break;
-  }
-  restricted_map(region, mp_.problem.with_free_dofs(heading_), best);
+  restricted_map(widen_by_rings(mp_.problem, elements, kProbeMapRings, growth, kMapRings, kMapMinElements),
+                 mp_.problem.with_free_dofs(heading_), best);
 }
 
 std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
