@@ -52,15 +52,16 @@ void ActiveSetPolicy::consider(const socp::IpmState& s, const Eigen::VectorXd& d
   try_bound(chosen, mp_.problem.with_free_dofs(s.x), tol, best);
 }
 
+bool ActiveSetPolicy::probes_left() const {
+  const LinfOptions& options = mp_.options;
+  return options.active_set_bounds && options.active_set_probes && options.gap_tolerance <= kTightestLooseTolerance &&
+         mp_.prog.num_eq() > 0 && probes_ < kMaxProbes && attempts_ == 0;
+}
+
 bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& x, const Eigen::VectorXd& d, double k,
                                 const socp::IpmIteration& info) {
-  const LinfOptions& options = mp_.options;
-  if (!options.active_set_bounds || !options.active_set_probes || options.gap_tolerance > kTightestLooseTolerance)
-    return false;
-  if (mp_.prog.num_eq() == 0 || probes_ >= kMaxProbes || attempts_ > 0 ||
-      !(info.gap <= kProbeGap * std::max(1.0, std::abs(info.pobj))))
-    return false;
-  const double tol = options.gap_tolerance * std::max(1.0, std::abs(k));
+  if (!probes_left() || !(info.gap <= kProbeGap * std::max(1.0, std::abs(info.pobj)))) return false;
+  const double tol = mp_.options.gap_tolerance * std::max(1.0, std::abs(k));
   const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeDivisor;
   heading_ = previous_x_.size() == x.size() ? Eigen::VectorXd(2 * x - previous_x_) : x;
   heading_distortions_ = socp::cone_distortions(mp_.prog, heading_);
@@ -82,8 +83,7 @@ bool ActiveSetPolicy::probe_due(const Eigen::VectorXd& x, const Eigen::VectorXd&
 }
 
 void ActiveSetPolicy::remember(const Eigen::VectorXd& x) {
-  if (mp_.prog.num_eq() > 0 && mp_.options.active_set_probes && probes_ < kMaxProbes && attempts_ == 0)
-    previous_x_ = x;
+  if (probes_left()) previous_x_ = x;
 }
 
 void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best) {

@@ -95,6 +95,9 @@ class ActiveSetPolicy {
   void remember(const Eigen::VectorXd& x);
 
  private:
+  // Whether a probe can still come: options allow it, the program has equalities, and
+  // neither the probes nor the late attempts have started or run out.
+  bool probes_left() const;
   std::vector<int> near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const;
   // The late attempts' map region: chosen and up to kMapRings rings around it (kMapGrowth).
   std::vector<int> map_region(const std::vector<int>& chosen) const;
