@@ -194,9 +194,10 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
 
   // 2. The main program. Its normal equations' ordering and analysis (a third of a second at
   // 100k elements) run on another thread while this one builds the least-squares factor and
-  // the start. They read only the program's structure, which stays fixed from here (phase 1
-  // and the widening of bounds change bounds only); the wait comes before phase 1, whose own
-  // analysis uses METIS too (its random generator is global: no two orderings at once).
+  // the start, and the main solve's first certificate. They read only the program's structure,
+  // which stays fixed from here (phase 1 and the widening of bounds change bounds only); the
+  // wait comes before phase 1 and before any active-set solve, whose own analyses use METIS
+  // too (its random generator is global: no two orderings at once).
   MainProgram mp(p, options, cls);
   const socp::IpmSettings settings = ipm_settings(options);  // the normal equations keep a reference
   std::unique_ptr<socp::NormalEquations> normal_equations;
@@ -260,9 +261,13 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   Eigen::VectorXd effective_bounds = bounds;
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
-  analysis.wait();
   LinfWarmStart* fitting = warm && warm->fits(mp.prog.cone_size(), mp.prog.num_eq()) && warm->close_enough() ? warm : nullptr;
-  MainSolve ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, fitting);
+  // The analysis is waited for after the start's first certificate (solve_main).
+  MainSolve ms = solve_main(mp, ls, start, effective_bounds, [&] {
+    analysis.wait();
+    return normal_equations.get();
+  }, result.history, t0, fitting);
+  analysis.wait();
   socp::IpmSettings penalty = settings;  // the fallback's (the normal equations keep a reference)
   penalty.eliminate_equalities = false;
   std::string fallback_note;
@@ -273,7 +278,8 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
     // cross pairs twice, docs/linf.md): solve again with the equalities' penalty (kkt.h).
     const int first_iterations = ms.outcome.iterations;
     normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, penalty);
-    ms = solve_main(mp, ls, start, effective_bounds, normal_equations.get(), result.history, t0, nullptr);
+    ms = solve_main(mp, ls, start, effective_bounds, [&] { return normal_equations.get(); }, result.history, t0,
+                    nullptr);
     result.iterations += first_iterations;
     fallback_note = "the eliminated Newton systems could not be factored after " + std::to_string(first_iterations) +
                     " iterations; solved again with the equalities' penalty";

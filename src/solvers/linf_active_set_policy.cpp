@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <tbb/task_group.h>
 
 #include "solvers/linf_active_set.h"
 #include "solvers/socp/fd_program.h"
+#include "solvers/socp/ordering.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin::linf_detail {
@@ -89,7 +91,18 @@ void ActiveSetPolicy::remember(const Eigen::VectorXd& x) {
 void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best) {
   ++probes_;
   due_iteration_ = -1;
+  // The map's region depends on the bound (below), but it is usually the heading's elements
+  // with rings: that map is solved beside the bound (the restricted solves are small and
+  // mostly serial, so the other core is idle) and kept when the region turns out the same.
+  const Eigen::MatrixXd heading = mp_.problem.with_free_dofs(heading_);
+  const std::vector<int> early_region = probe_map_region(heading_elements_);
+  const bool beside = !early_region.empty() && orders_without_metis(early_region) &&
+                      orders_without_metis(probe_elements_);
+  ActiveSetSolve early_map;
+  tbb::task_group map_beside;
+  if (beside) map_beside.run([&] { early_map = solve_map(early_region, heading); });
   const double bound = restricted_bound(probe_elements_, mp_.problem.with_free_dofs(s.x), best);
+  map_beside.wait();
   // A restriction whose bound is below the iterates' own certificate misses the dual's
   // support: its map would not reach the optimum either.
   if (!(bound > best.iterate_bound) || best.k - best.lower_bound <= tol) return;
@@ -108,9 +121,30 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
     if (heading_distortions_[i] >= bound - tol && !in[mp_.elems[i]]) elements.push_back(mp_.elems[i]);
   const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeMapDivisor;
   if (elements.empty() || elements.size() > limit) return;
+  if (beside && elements.size() == heading_elements_.size()) {  // nothing added: the early map's region
+    keep_map(early_map, best);
+    return;
+  }
+  restricted_map(probe_map_region(elements), heading, best);
+}
+
+std::vector<int> ActiveSetPolicy::probe_map_region(const std::vector<int>& elements) const {
+  const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeMapDivisor;
+  if (elements.empty() || elements.size() > limit) return {};
   const double growth = static_cast<double>(limit) / static_cast<double>(elements.size());
-  restricted_map(widen_by_rings(mp_.problem, elements, kProbeMapRings, growth, kMapRings, kMapMinElements),
-                 mp_.problem.with_free_dofs(heading_), best);
+  return widen_by_rings(mp_.problem, elements, kProbeMapRings, growth, kMapRings, kMapMinElements);
+}
+
+bool ActiveSetPolicy::orders_without_metis(const std::vector<int>& elements) const {
+  std::vector<char> seen(mp_.problem.num_vertices, 0);
+  int vertices = 0;
+  for (int e : elements)
+    for (int a = 0; a < mp_.problem.corners(); ++a) {
+      char& v = seen[mp_.problem.elements(e, a)];
+      vertices += !v;
+      v = 1;
+    }
+  return vertices < socp::kMetisMinVertices;
 }
 
 std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
@@ -146,12 +180,20 @@ void ActiveSetPolicy::try_map(const std::vector<int>& chosen, const Eigen::Matri
 }
 
 void ActiveSetPolicy::restricted_map(const std::vector<int>& region, const Eigen::MatrixXd& X, BestSoFar& best) const {
-  const Problem& p = mp_.problem;
+  keep_map(solve_map(region, X), best);
+}
+
+ActiveSetSolve ActiveSetPolicy::solve_map(const std::vector<int>& region, const Eigen::MatrixXd& X) const {
   const auto t0 = std::chrono::steady_clock::now();
-  const ActiveSetSolve m = active_set_map(p, region, X, effective_bounds_, mp_.options);
+  ActiveSetSolve m = active_set_map(mp_.problem, region, X, effective_bounds_, mp_.options);
   if (mp_.options.verbose)
     std::fprintf(stderr, "linf: active-set map from %d elements (%d iterations, %.3f s)\n", m.elements, m.iterations,
                  seconds_since(t0));
+  return m;
+}
+
+void ActiveSetPolicy::keep_map(const ActiveSetSolve& m, BestSoFar& best) const {
+  const Problem& p = mp_.problem;
   if (m.positions.size() == 0 || !m.positions.allFinite()) return;
   // Kept when it lowers k and meets every constraint, checked on the whole problem.
   const Eigen::VectorXd x2 = onto_equalities(mp_.prog, p.free_dofs(m.positions));
@@ -165,8 +207,21 @@ void ActiveSetPolicy::restricted_map(const std::vector<int>& region, const Eigen
 
 void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol,
                                 BestSoFar& best) {
+  // The map, needed when the bound comes close, is solved beside it where both are ordered
+  // without METIS (the restricted solves are small and mostly serial).
+  const std::vector<int> region = map_region(chosen);
+  const bool beside = orders_without_metis(region) && orders_without_metis(chosen);
+  ActiveSetSolve early_map;
+  tbb::task_group map_beside;
+  if (beside) map_beside.run([&] { early_map = solve_map(region, X); });
   bound_ = restricted_bound(chosen, X, best);
-  if (best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol) try_map(chosen, X, best);
+  map_beside.wait();
+  if (!(best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol)) return;
+  ++maps_;
+  if (beside)
+    keep_map(early_map, best);
+  else
+    restricted_map(region, X, best);
 }
 
 double ActiveSetPolicy::restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X,

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "linf_main_solve.h"
+#include "solvers/linf_active_set.h"
 #include "linf_program.h"
 #include "solvers/socp/residuals.h"
 #include "solvers/socp/settings.h"
@@ -104,9 +105,16 @@ class ActiveSetPolicy {
   void try_map(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best);
   void try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol, BestSoFar& best);
   void probe(const socp::IpmState& s, double tol, BestSoFar& best);
+  // The probe's map region around `elements` (rings, see kProbeMapRings).
+  std::vector<int> probe_map_region(const std::vector<int>& elements) const;
+  // Whether a restriction to these elements is ordered without METIS (kMetisMinVertices), so
+  // that two can be solved at once.
+  bool orders_without_metis(const std::vector<int>& elements) const;
   // The restricted solves themselves: each raises best where it does better, and returns its bound / nothing.
   double restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
   void restricted_map(const std::vector<int>& region, const Eigen::MatrixXd& X, BestSoFar& best) const;
+  ActiveSetSolve solve_map(const std::vector<int>& region, const Eigen::MatrixXd& X) const;
+  void keep_map(const ActiveSetSolve& m, BestSoFar& best) const;
 
   const MainProgram& mp_;
   const Eigen::VectorXd& effective_bounds_;

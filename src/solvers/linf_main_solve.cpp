@@ -72,7 +72,7 @@ void warm_initialize(const socp::ConeProgram& prog, const Candidate& start, cons
 }  // namespace
 
 MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls, const Candidate& start,
-                     const Eigen::VectorXd& effective_bounds, socp::NormalEquations* normal_equations,
+                     const Eigen::VectorXd& effective_bounds, const socp::NormalEquationsSource& normal_equations,
                      std::vector<IterationRecord>& history, std::chrono::steady_clock::time_point t0,
                      const LinfWarmStart* warm) {
   const LinfOptions& options = mp.options;
@@ -88,6 +88,16 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
     socp::initialize(mp.prog, start.x, start_above(start.kmax), margin, 1.0, st, bounded_margin);
   }
   ActiveSetPolicy active_set(mp, effective_bounds);
+  // The normal equations, once their analysis is done (it may still run on another thread
+  // through the first certificate). The active-set solves wait for it too: their own
+  // orderings may call METIS, whose random generator is global.
+  socp::NormalEquations* analysed = nullptr;
+  bool waited = false;
+  auto wait_for_analysis = [&] {
+    if (!waited) analysed = normal_equations ? normal_equations() : nullptr;
+    waited = true;
+    return analysed;
+  };
   double last_progress_gap = kInf;
   int last_progress_iteration = 0;
   bool last_certified = true;
@@ -146,6 +156,7 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
                            best.k - info.dobj <= near || info.gap <= near || info.kkt_residual > kUnreliableDirections;
     if (certified) {
       certify(s);
+      wait_for_analysis();
       active_set.consider(s, d, k, info, best);
     }
     best.previous_k = k;
@@ -158,7 +169,7 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
       return false;
     }
     return judge(info);
-  }, normal_equations);
+  }, wait_for_analysis);
   if (!last_certified) certify(st);
   ms.final_z = std::move(st.z);
   ms.final_y = std::move(st.y);

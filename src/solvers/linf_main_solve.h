@@ -12,6 +12,7 @@
 #include "linf_warm_start.h"
 #include "strictmin/solvers/result.h"
 #include "solvers/socp/certificate.h"
+#include "solvers/socp/ipm.h"
 #include "solvers/socp/kkt.h"
 #include "solvers/socp/settings.h"
 
@@ -39,7 +40,7 @@ struct MainSolve {
 // bounds as widened by the start's round-off; records every iteration in `history` (and
 // reports it to options.progress), elapsed times from t0.
 MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls, const Candidate& start,
-                     const Eigen::VectorXd& effective_bounds, socp::NormalEquations* normal_equations,
+                     const Eigen::VectorXd& effective_bounds, const socp::NormalEquationsSource& normal_equations,
                      std::vector<IterationRecord>& history, std::chrono::steady_clock::time_point t0,
                      const LinfWarmStart* warm);
 

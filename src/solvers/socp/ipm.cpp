@@ -95,6 +95,11 @@ bool default_converged(const Residuals& r, const IpmSettings& settings) {
 
 IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
                    NormalEquations* normal_equations) {
+  return run_ipm(p, st, settings, monitor, [normal_equations] { return normal_equations; });
+}
+
+IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
+                   const NormalEquationsSource& source) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   IpmOutcome out;
@@ -122,12 +127,6 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
                    t.apply_cpu, t.applies);
     }
   } finish{out, settings, elapsed};
-  auto tp = clock();
-  std::unique_ptr<NormalEquations> own;
-  if (!normal_equations) own = std::make_unique<NormalEquations>(p, settings);
-  NormalEquations& kkt = normal_equations ? *normal_equations : *own;
-  finish.kkt = &kkt;
-  out.analyze_s = since(tp);
   const ResidualScales scales = residual_scales(p);
   const double nu = p.num_cones();
   Residuals res;
@@ -135,13 +134,21 @@ IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settin
   IpmIteration info;
   fill_info(res, nu, info);
   info.time_s = elapsed();
-  tp = clock();
+  auto tp = clock();
   const bool done = monitor(st, res, info);
   out.monitor_s += since(tp);
   if (done) {
     out.status = IpmStatus::MonitorStopped;
     return out;
   }
+  // The normal equations: waited for (or analysed) only now.
+  tp = clock();
+  std::unique_ptr<NormalEquations> own;
+  NormalEquations* given = source ? source() : nullptr;
+  if (!given) own = std::make_unique<NormalEquations>(p, settings);
+  NormalEquations& kkt = given ? *given : *own;
+  finish.kkt = &kkt;
+  out.analyze_s = since(tp);
   Scaling sc;
   Eigen::VectorXd ll, corr, rc, qa, qc, s_new, z_new;
   // Correctors: r_s = 0 is passed as an empty vector (solve_newton skips its pass).

@@ -52,4 +52,11 @@ class NormalEquations;
 IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
                    NormalEquations* normal_equations = nullptr);
 
+// The normal equations from a source called once, after the start's residuals and the
+// monitor's first call, just before the first factorisation: an analysis running on another
+// thread (solve_linf's) overlaps that first call. A null result: analysed here.
+using NormalEquationsSource = std::function<NormalEquations*()>;
+IpmOutcome run_ipm(const ConeProgram& p, IpmState& st, const IpmSettings& settings, const IpmMonitor& monitor,
+                   const NormalEquationsSource& source);
+
 }  // namespace strictmin::socp

@@ -8,6 +8,7 @@
 #include <ctime>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_group.h>
 
 #include "solvers/serial_cholmod_scope.h"
 #include "solvers/socp/ordering.h"
@@ -70,6 +71,26 @@ void NormalEquations::build_pattern() {
   nsys_ = elim_ ? null_space_.num_dofs(n) : p_.num_x;
   const int N = nsys_;
   const int F = N / n;
+  // What does not depend on the order runs beside it: METIS keeps this thread (its random
+  // generator is global, so no other ordering may run meanwhile), and a thread that waits for
+  // this analysis (solve_linf's) or an idle one takes these up. Horse's seamless problem: the
+  // seams' element pairs take 0.06 s of the 0.48 s analysis, its ordering 0.25 s.
+  std::vector<char> simple_element;
+  std::vector<SeamPair> seam_pairs;
+  tbb::task_group beside_ordering;
+  struct WaitOnExit {  // the tasks reference this frame
+    tbb::task_group& g;
+    ~WaitOnExit() { g.wait(); }
+  } wait_on_exit{beside_ordering};
+  beside_ordering.run([&] {
+    simple_element = simple_elements();
+    if (elim_) seam_pairs = expand_seam_pairs(simple_element);
+  });
+  if (p_.num_eq() > 0)
+    beside_ordering.run([&] {
+      at_ = p_.A.transpose();
+      if (elim_) factor_aat();
+    });
   // The free vertices' graph (with elimination: the y nodes' graph): elements and equality
   // rows couple their vertices.
   std::vector<int> offset(F + 1, 0), adj;
@@ -181,44 +202,17 @@ void NormalEquations::build_pattern() {
   // Equalities: A^T A / rho joins the matrix (its couplings are edges of the graph above),
   // unless they are eliminated; then A A^T gives the particular solutions and multipliers.
   Eigen::SparseMatrix<double> ata;
-  if (p_.num_eq() > 0) {
-    at_ = p_.A.transpose();
-    if (!elim_) ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
-    else factor_aat();
-  }
+  if (p_.num_eq() > 0 && !elim_)
+    ata = (Eigen::SparseMatrix<double>(p_.A.transpose()) * Eigen::SparseMatrix<double>(p_.A)).pruned();
+  beside_ordering.wait();
   const Eigen::Index nnz = matrix_.nonZeros();
   slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
   p_values_.setZero(nnz);
-  // A corner is simple when its dofs are n system dofs of their own (always without
-  // elimination; with it, a vertex that is its own y node). An element of simple corners maps
-  // each pair to one nonzero; the others (along the seams) spread each pair over the y dofs
-  // of their corners' terms (extra_).
-  auto simple_corner = [&](int base) {
-    if (base < 0 || !elim_) return true;
-    const int f = base / n, t = null_space_.offset[f];
-    if (null_space_.offset[f + 1] != t + 1) return false;
-    const double* b = null_space_.block.data() + static_cast<size_t>(t) * n * n;
-    for (int r = 0; r < n; ++r)
-      for (int s = 0; s < n; ++s)
-        if (b[r * n + s] != (r == s ? 1.0 : 0.0)) return false;
-    return true;
-  };
-  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
-  std::vector<char> simple_element(E, 1);
   // Each element pair's nonzero (in parallel), then the counts.
+  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
   parallel_for_index(E, kGrain, [&](int begin, int end) {
     std::vector<int> local(L);
     for (int i = begin; i < end; ++i) {
-      for (int j = 0; j < c; ++j)
-        if (!simple_corner(p_.dof_base[i * c + j])) simple_element[i] = 0;
-      // Two corners that are one y node (a vertex whose equalities make it equal to another,
-      // x_f = x_g) are not simple either: their cross pairs land on that node's diagonal
-      // block, where they count twice (extra_ below); one nonzero per pair would miss one.
-      for (int j1 = 0; j1 < c && elim_ && simple_element[i]; ++j1)
-        for (int j2 = 0; j2 < j1; ++j2) {
-          const int b1 = p_.dof_base[i * c + j1], b2 = p_.dof_base[i * c + j2];
-          if (b1 >= 0 && b2 >= 0 && corner_dof(b1) == corner_dof(b2)) simple_element[i] = 0;
-        }
       if (!simple_element[i]) continue;
       for (int j = 0; j < c; ++j)
         for (int r = 0; r < n; ++r) {
@@ -232,40 +226,16 @@ void NormalEquations::build_pattern() {
                 find(std::min(local[l1], local[l2]), std::max(local[l1], local[l2]));
     }
   });
-  extra_.clear();
-  if (elim_) {
-    // Local dof l = (corner j, row r) is sum over its vertex's terms of block(r, s) y(node, s):
-    // entry (a, b) of Z^T H Z gets sum Z_ia H_ij Z_jb over ordered (i, j). A pair l1 > l2 stands
-    // for (l1, l2) and (l2, l1); a diagonal pair for (l, l) only.
-    std::vector<std::vector<std::pair<int, double>>> expansion(L);
-    for (int i = 0; i < E; ++i) {
-      if (simple_element[i]) continue;
-      for (int j = 0; j < c; ++j)
-        for (int r = 0; r < n; ++r) {
-          auto& e = expansion[j * n + r];
-          e.clear();
-          const int base = p_.dof_base[i * c + j];
-          if (base < 0) continue;
-          const int f = base / n;
-          for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t)
-            for (int s = 0; s < n; ++s) {
-              const double b = null_space_.block[(static_cast<size_t>(t) * n + r) * n + s];
-              if (b != 0.0) e.emplace_back(perm_[null_space_.node[t] * n + s], b);
-            }
-        }
-      for (int l1 = 0; l1 < L; ++l1)
-        for (int l2 = 0; l2 <= l1; ++l2) {
-          const int slot = i * npairs_ + pair_index(l1, l2);
-          const auto &e1 = expansion[l1], &e2 = expansion[l2];
-          for (size_t a = 0; a < e1.size(); ++a)
-            for (size_t b = (l1 == l2 ? a : 0); b < e2.size(); ++b) {
-              const int ya = e1[a].first, yb = e2[b].first;
-              double coef = e1[a].second * e2[b].second;
-              if (ya == yb && l1 != l2) coef *= 2.0;
-              extra_.push_back({slot, find(std::min(ya, yb), std::max(ya, yb)), coef});
-            }
-        }
+  // The seams' pairs in the new numbering.
+  extra_.resize(seam_pairs.size());
+  parallel_for_index(static_cast<int>(seam_pairs.size()), kGrain, [&](int begin, int end) {
+    for (int z = begin; z < end; ++z) {
+      const SeamPair& q = seam_pairs[z];
+      const int ya = perm_[q.a], yb = perm_[q.b];
+      extra_[z] = {q.slot, find(std::min(ya, yb), std::max(ya, yb)), q.coef};
     }
+  });
+  if (elim_) {
     // In the matrix's order: the gather then writes each nonzero once, in sequence. The
     // entries were made in ascending slots, so a stable counting sort by target orders them
     // by (target, slot) in one pass (horse: 1.5M entries, a comparison sort took 1.3% of
@@ -586,6 +556,80 @@ Eigen::VectorXd NormalEquations::to_dofs(const Eigen::VectorXd& y) const {
   Eigen::VectorXd x;
   apply_z(null_space_, p_.n, y, x);
   return x;
+}
+
+// A corner is simple when its dofs are n system dofs of their own (always without
+// elimination; with it, a vertex that is its own y node). An element of simple corners maps
+// each pair to one nonzero; the others (along the seams) spread each pair over the y dofs of
+// their corners' terms (expand_seam_pairs).
+std::vector<char> NormalEquations::simple_elements() const {
+  const int n = p_.n, c = p_.corners(), E = p_.num_element_cones();
+  auto simple_corner = [&](int base) {
+    if (base < 0 || !elim_) return true;
+    const int f = base / n, t = null_space_.offset[f];
+    if (null_space_.offset[f + 1] != t + 1) return false;
+    const double* b = null_space_.block.data() + static_cast<size_t>(t) * n * n;
+    for (int r = 0; r < n; ++r)
+      for (int s = 0; s < n; ++s)
+        if (b[r * n + s] != (r == s ? 1.0 : 0.0)) return false;
+    return true;
+  };
+  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
+  std::vector<char> simple(E, 1);
+  parallel_for_index(E, kGrain, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      for (int j = 0; j < c; ++j)
+        if (!simple_corner(p_.dof_base[i * c + j])) simple[i] = 0;
+      // Two corners that are one y node (a vertex whose equalities make it equal to another,
+      // x_f = x_g) are not simple either: their cross pairs land on that node's diagonal
+      // block, where they count twice (below); one nonzero per pair would miss one.
+      for (int j1 = 0; j1 < c && elim_ && simple[i]; ++j1)
+        for (int j2 = 0; j2 < j1; ++j2) {
+          const int b1 = p_.dof_base[i * c + j1], b2 = p_.dof_base[i * c + j2];
+          if (b1 >= 0 && b2 >= 0 && corner_dof(b1) == corner_dof(b2)) simple[i] = 0;
+        }
+    }
+  });
+  return simple;
+}
+
+// Local dof l = (corner j, row r) is sum over its vertex's terms of block(r, s) y(node, s):
+// entry (a, b) of Z^T H Z gets sum Z_ia H_ij Z_jb over ordered (i, j). A pair l1 > l2 stands
+// for (l1, l2) and (l2, l1); a diagonal pair for (l, l) only. In the y dofs' own numbering,
+// before the fill-reducing order.
+std::vector<NormalEquations::SeamPair> NormalEquations::expand_seam_pairs(const std::vector<char>& simple) const {
+  const int n = p_.n, c = p_.corners(), L = p_.local_dofs(), E = p_.num_element_cones();
+  std::vector<SeamPair> pairs;
+  std::vector<std::vector<std::pair<int, double>>> expansion(L);
+  for (int i = 0; i < E; ++i) {
+    if (simple[i]) continue;
+    for (int j = 0; j < c; ++j)
+      for (int r = 0; r < n; ++r) {
+        auto& e = expansion[j * n + r];
+        e.clear();
+        const int base = p_.dof_base[i * c + j];
+        if (base < 0) continue;
+        const int f = base / n;
+        for (int t = null_space_.offset[f]; t < null_space_.offset[f + 1]; ++t)
+          for (int s = 0; s < n; ++s) {
+            const double b = null_space_.block[(static_cast<size_t>(t) * n + r) * n + s];
+            if (b != 0.0) e.emplace_back(null_space_.node[t] * n + s, b);
+          }
+      }
+    for (int l1 = 0; l1 < L; ++l1)
+      for (int l2 = 0; l2 <= l1; ++l2) {
+        const int slot = i * npairs_ + pair_index(l1, l2);
+        const auto &e1 = expansion[l1], &e2 = expansion[l2];
+        for (size_t a = 0; a < e1.size(); ++a)
+          for (size_t b = (l1 == l2 ? a : 0); b < e2.size(); ++b) {
+            const int ya = e1[a].first, yb = e2[b].first;
+            double coef = e1[a].second * e2[b].second;
+            if (ya == yb && l1 != l2) coef *= 2.0;
+            pairs.push_back({slot, ya, yb, coef});
+          }
+      }
+  }
+  return pairs;
 }
 
 void NormalEquations::factor_aat() {

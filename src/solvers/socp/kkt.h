@@ -96,6 +96,14 @@ class NormalEquations {
 
  private:
   void build_pattern();
+  // An element pair that spreads over several nonzeros (along the seams, with elimination):
+  // its slot, the two y dofs (before the fill-reducing order) and the coefficient.
+  struct SeamPair {
+    int slot, a, b;
+    double coef;
+  };
+  std::vector<char> simple_elements() const;  // per element cone: its pairs map one to one
+  std::vector<SeamPair> expand_seam_pairs(const std::vector<char>& simple) const;
   // The normal equations (H + P) dv + A~^T w = (r1x, r1k), A~ dv = r2 with the factor
   // (regularised, penalised equalities; w = -dy).
   void solve_normal(const Eigen::VectorXd& r1x, double r1k, const Eigen::VectorXd& r2, Eigen::VectorXd& dx,

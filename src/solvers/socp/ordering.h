@@ -9,10 +9,14 @@
 
 namespace strictmin::socp {
 
+// Graphs of fewer vertices are ordered by AMD, which (unlike METIS, whose random generator
+// is global) any number of threads may run at once.
+constexpr int kMetisMinVertices = 5000;
+
 // adjacency in CSR form (adj[offset[v] .. offset[v+1]]), symmetric, without self loops.
 // Returns order: order[i] is the vertex eliminated i-th.
 std::vector<int> vertex_ordering(const std::vector<int>& offset, const std::vector<int>& adj,
-                                 int metis_threshold = 5000);
+                                 int metis_threshold = kMetisMinVertices);
 
 // Top-level vertex separator (METIS, through CHOLMOD): part[v] is 0 or 1 for the two halves,
 // 2 for the separator. Empty when METIS fails or a half is empty.
