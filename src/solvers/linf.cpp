@@ -196,8 +196,8 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   // 100k elements) run on another thread while this one builds the least-squares factor and
   // the start, and the main solve's first certificate. They read only the program's structure,
   // which stays fixed from here (phase 1 and the widening of bounds change bounds only); the
-  // wait comes before phase 1 and before any active-set solve, whose own analyses use METIS
-  // too (its random generator is global: no two orderings at once).
+  // wait comes before phase 1 and before any active-set solve, which would compete with it
+  // for the cores. (Their orderings may run beside it: METIS calls take turns, ordering.h.)
   MainProgram mp(p, options, cls);
   const socp::IpmSettings settings = ipm_settings(options);  // the normal equations keep a reference
   std::unique_ptr<socp::NormalEquations> normal_equations;

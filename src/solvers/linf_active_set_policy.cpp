@@ -8,7 +8,6 @@
 
 #include "solvers/linf_active_set.h"
 #include "solvers/socp/fd_program.h"
-#include "solvers/socp/ordering.h"
 #include "strictmin/solvers/timing.h"
 
 namespace strictmin::linf_detail {
@@ -96,8 +95,7 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
   // mostly serial, so the other core is idle) and kept when the region turns out the same.
   const Eigen::MatrixXd heading = mp_.problem.with_free_dofs(heading_);
   const std::vector<int> early_region = probe_map_region(heading_elements_);
-  const bool beside = !early_region.empty() && orders_without_metis(early_region) &&
-                      orders_without_metis(probe_elements_);
+  const bool beside = !early_region.empty();
   ActiveSetSolve early_map;
   tbb::task_group map_beside;
   if (beside) map_beside.run([&] { early_map = solve_map(early_region, heading); });
@@ -135,17 +133,6 @@ std::vector<int> ActiveSetPolicy::probe_map_region(const std::vector<int>& eleme
   return widen_by_rings(mp_.problem, elements, kProbeMapRings, growth, kMapRings, kMapMinElements);
 }
 
-bool ActiveSetPolicy::orders_without_metis(const std::vector<int>& elements) const {
-  std::vector<char> seen(mp_.problem.num_vertices, 0);
-  int vertices = 0;
-  for (int e : elements)
-    for (int a = 0; a < mp_.problem.corners(); ++a) {
-      char& v = seen[mp_.problem.elements(e, a)];
-      vertices += !v;
-      v = 1;
-    }
-  return vertices < socp::kMetisMinVertices;
-}
 
 std::vector<int> ActiveSetPolicy::near_maximum(const Eigen::VectorXd& d, double k, double reach, double tol) const {
   const MainProgram& mp = mp_;
@@ -207,21 +194,17 @@ void ActiveSetPolicy::keep_map(const ActiveSetSolve& m, BestSoFar& best) const {
 
 void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, double tol,
                                 BestSoFar& best) {
-  // The map, needed when the bound comes close, is solved beside it where both are ordered
-  // without METIS (the restricted solves are small and mostly serial).
+  // The map, needed when the bound comes close, is solved beside it (the restricted solves
+  // are small and mostly serial, and their METIS calls take turns: ordering.h).
   const std::vector<int> region = map_region(chosen);
-  const bool beside = orders_without_metis(region) && orders_without_metis(chosen);
   ActiveSetSolve early_map;
   tbb::task_group map_beside;
-  if (beside) map_beside.run([&] { early_map = solve_map(region, X); });
+  map_beside.run([&] { early_map = solve_map(region, X); });
   bound_ = restricted_bound(chosen, X, best);
   map_beside.wait();
   if (!(best.k - bound_ <= kBoundClose * tol && best.k - best.lower_bound > tol)) return;
   ++maps_;
-  if (beside)
-    keep_map(early_map, best);
-  else
-    restricted_map(region, X, best);
+  keep_map(early_map, best);
 }
 
 double ActiveSetPolicy::restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X,

@@ -107,9 +107,6 @@ class ActiveSetPolicy {
   void probe(const socp::IpmState& s, double tol, BestSoFar& best);
   // The probe's map region around `elements` (rings, see kProbeMapRings).
   std::vector<int> probe_map_region(const std::vector<int>& elements) const;
-  // Whether a restriction to these elements is ordered without METIS (kMetisMinVertices), so
-  // that two can be solved at once.
-  bool orders_without_metis(const std::vector<int>& elements) const;
   // The restricted solves themselves: each raises best where it does better, and returns its bound / nothing.
   double restricted_bound(const std::vector<int>& chosen, const Eigen::MatrixXd& X, BestSoFar& best) const;
   void restricted_map(const std::vector<int>& region, const Eigen::MatrixXd& X, BestSoFar& best) const;

@@ -89,8 +89,8 @@ MainSolve solve_main(const MainProgram& mp, const socp::WeightedLeastSquares& ls
   }
   ActiveSetPolicy active_set(mp, effective_bounds);
   // The normal equations, once their analysis is done (it may still run on another thread
-  // through the first certificate). The active-set solves wait for it too: their own
-  // orderings may call METIS, whose random generator is global.
+  // through the first certificate). The active-set solves wait for it too, rather than
+  // compete with it for the cores.
   socp::NormalEquations* analysed = nullptr;
   bool waited = false;
   auto wait_for_analysis = [&] {

@@ -71,6 +71,14 @@ OrderingMemo& memo() {
   return m;
 }
 
+// METIS's random generator is the C library's, global to the process, and METIS seeds it at
+// the start of every call. One call at a time, then, and each returns what it would alone:
+// solves that order their graphs on several threads at once stay reproducible.
+std::mutex& metis_lock() {
+  static std::mutex m;
+  return m;
+}
+
 constexpr int kBisection = -1;  // the memo's kind for vertex_bisection (orderings: their threshold)
 
 }  // namespace
@@ -92,7 +100,11 @@ std::vector<int> compute_bisection(const std::vector<int>& offset, const std::ve
   cholmod_start(&common);
   common.print = 0;
   std::vector<int> part(n, 0);
-  const long sep = cholmod_bisect(&g.A, nullptr, 0, 1, part.data(), &common);
+  long sep;
+  {
+    std::lock_guard<std::mutex> one_at_a_time(metis_lock());
+    sep = cholmod_bisect(&g.A, nullptr, 0, 1, part.data(), &common);
+  }
   const bool ok = common.status == CHOLMOD_OK && sep >= 0;
   cholmod_finish(&common);
   if (!ok) return {};
@@ -114,9 +126,8 @@ std::vector<int> bisected_ordering(const std::vector<int>& offset, const std::ve
     local[v] = static_cast<int>(vertices[part[v]].size());
     vertices[part[v]].push_back(v);
   }
-  // The halves' nested dissections (one after the other: METIS's random generator is a
-  // global, so parallel calls would make the order irreproducible); the separator's Schur
-  // complement is dense: any order.
+  // The halves' nested dissections (one after the other: METIS runs one call at a time, see
+  // metis_lock); the separator's Schur complement is dense: any order.
   std::vector<int> half_order[2];
   auto order_half = [&](int p) {
     std::vector<int> sub_offset(1, 0), sub_adj;
@@ -159,7 +170,10 @@ std::vector<int> compute_ordering(const std::vector<int>& offset, const std::vec
   cholmod_sparse& A = g.A;
   std::vector<int> perm(n);
   bool ok = false;
-  if (n >= metis_threshold) ok = cholmod_metis(&A, nullptr, 0, 1, perm.data(), &common);
+  if (n >= metis_threshold) {
+    std::lock_guard<std::mutex> one_at_a_time(metis_lock());
+    ok = cholmod_metis(&A, nullptr, 0, 1, perm.data(), &common);
+  }
   if (!ok) ok = cholmod_amd(&A, nullptr, 0, perm.data(), &common);
   cholmod_finish(&common);
   return ok ? perm : order;

@@ -9,8 +9,10 @@
 
 namespace strictmin::socp {
 
-// Graphs of fewer vertices are ordered by AMD, which (unlike METIS, whose random generator
-// is global) any number of threads may run at once.
+// Graphs of fewer vertices are ordered by AMD, larger ones by METIS. METIS's random
+// generator is the C library's, global to the process, and it seeds it at the start of each
+// call: its calls here take turns (a lock), so each gives what it would alone and solves on
+// several threads stay reproducible.
 constexpr int kMetisMinVertices = 5000;
 
 // adjacency in CSR form (adj[offset[v] .. offset[v+1]]), symmetric, without self loops.
