@@ -310,9 +310,9 @@ TEST(ActiveSet, ProbesOnSeamsKeepTheOptimumAndEndSooner) {
   }
 }
 
-// The restricted maps are solved beside their bounds, on another thread (both are ordered by
-// AMD, never by METIS, whose random generator is global): a second solve repeats the first
-// bit for bit. Cow's and fertility's probes and homer's late attempts run that way.
+// The restricted maps are solved beside their bounds, on another thread (METIS's calls, whose
+// random generator is global, take turns): a second solve repeats the first bit for bit.
+// Cow's and fertility's probes and homer's late attempts run that way.
 TEST(ActiveSet, MapsBesideTheirBoundsRepeatBitForBit) {
   for (const char* name : {"cow", "fertility", "homer"}) {
     const Mesh* mesh = test_support::shared_closed_mesh(name);
