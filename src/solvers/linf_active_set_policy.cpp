@@ -117,13 +117,12 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
   for (int e : elements) in[e] = 1;
   for (int i = 0; i < mp_.num_free_cones; ++i)
     if (heading_distortions_[i] >= bound - tol && !in[mp_.elems[i]]) elements.push_back(mp_.elems[i]);
-  const size_t limit = static_cast<size_t>(mp_.problem.num_elements()) / kProbeMapDivisor;
-  if (elements.empty() || elements.size() > limit) return;
   if (beside && elements.size() == heading_elements_.size()) {  // nothing added: the early map's region
     keep_map(early_map, best);
     return;
   }
-  restricted_map(probe_map_region(elements), heading, best);
+  const std::vector<int> region = probe_map_region(elements);  // empty: too many elements
+  if (!region.empty()) restricted_map(region, heading, best);
 }
 
 std::vector<int> ActiveSetPolicy::probe_map_region(const std::vector<int>& elements) const {

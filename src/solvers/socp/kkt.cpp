@@ -77,11 +77,7 @@ void NormalEquations::build_pattern() {
   // seams' element pairs take 0.06 s of the 0.48 s analysis, its ordering 0.25 s.
   std::vector<char> simple_element;
   std::vector<SeamPair> seam_pairs;
-  tbb::task_group beside_ordering;
-  struct WaitOnExit {  // the tasks reference this frame
-    tbb::task_group& g;
-    ~WaitOnExit() { g.wait(); }
-  } wait_on_exit{beside_ordering};
+  tbb::task_group beside_ordering;  // waited for below (on an exception, by its destructor)
   beside_ordering.run([&] {
     simple_element = simple_elements();
     if (elim_) seam_pairs = expand_seam_pairs(simple_element);
@@ -209,7 +205,6 @@ void NormalEquations::build_pattern() {
   slot_target_.assign(static_cast<size_t>(E) * npairs_, -1);
   p_values_.setZero(nnz);
   // Each element pair's nonzero (in parallel), then the counts.
-  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
   parallel_for_index(E, kGrain, [&](int begin, int end) {
     std::vector<int> local(L);
     for (int i = begin; i < end; ++i) {
@@ -559,6 +554,10 @@ Eigen::VectorXd NormalEquations::to_dofs(const Eigen::VectorXd& y) const {
   return x;
 }
 
+int NormalEquations::corner_dof(int base) const {
+  return elim_ ? null_space_.node[null_space_.offset[base / p_.n]] * p_.n : base;
+}
+
 // A corner is simple when its dofs are n system dofs of their own (always without
 // elimination; with it, a vertex that is its own y node). An element of simple corners maps
 // each pair to one nonzero; the others (along the seams) spread each pair over the y dofs of
@@ -575,7 +574,6 @@ std::vector<char> NormalEquations::simple_elements() const {
         if (b[r * n + s] != (r == s ? 1.0 : 0.0)) return false;
     return true;
   };
-  auto corner_dof = [&](int base) { return elim_ ? null_space_.node[null_space_.offset[base / n]] * n : base; };
   std::vector<char> simple(E, 1);
   parallel_for_index(E, kGrain, [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {

@@ -102,6 +102,9 @@ class NormalEquations {
     int slot, a, b;
     double coef;
   };
+  // The first system dof of a corner's vertex (dof base): itself, or with elimination the
+  // first dof of its vertex's first y node (simple corners have just that one).
+  int corner_dof(int base) const;
   std::vector<char> simple_elements() const;  // per element cone: its pairs map one to one
   std::vector<SeamPair> expand_seam_pairs(const std::vector<char>& simple) const;
   // The normal equations (H + P) dv + A~^T w = (r1x, r1k), A~ dv = r2 with the factor
