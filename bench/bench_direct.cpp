@@ -25,6 +25,8 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
       options.max_steps = std::atoi(v) > 0 ? std::atoi(v) : 100000;
     // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
     if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
+    // STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
+    options.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
     // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
     LinfOptions linf;
     if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) linf.verbose = std::atoi(v);

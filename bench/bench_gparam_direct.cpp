@@ -10,6 +10,7 @@
 // STRICTMIN_MOVING_RINGS=R (DirectOptions::moving_rings), STRICTMIN_GPARAM_FIELD=curvature|unit (the
 // curvature-aligned field, --field curvature, or the unit field, --field unit, instead of the smoothest).
 // STRICTMIN_DIRECT_NO_PIN=1: DirectOptions::pin_essential off (--no-pin).
+// STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
 // Prints the levels, the time (wall and process CPU), the status and the message.
 #include <chrono>
 #include <cstdio>
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
   direct.k_min = 0.1;
   if (const int steps = env_int("STRICTMIN_DIRECT_MAX_STEPS", 0); steps > 0) direct.max_steps = steps;
   direct.pin_essential = std::getenv("STRICTMIN_DIRECT_NO_PIN") == nullptr;
+  direct.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
   direct.moving_rings = env_int("STRICTMIN_MOVING_RINGS", direct.moving_rings);
   const int verbose = env_int("STRICTMIN_LINF_VERBOSE", 0);
   const int verbose_level = env_int("STRICTMIN_DIRECT_VERBOSE_LEVEL", 0);

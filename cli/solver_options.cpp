@@ -56,6 +56,9 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
   g->add_flag("--no-pin", a.no_pin,
              "direct/exact: keep essential elements as cones at their bounds instead of pinning their Jacobians "
              "(the behaviour before pinning; the later levels then depend on the bounds' slack)");
+  g->add_flag("--level-cold-start", a.level_cold_start,
+              "direct: start every level's interior-point method afresh (default: from the previous level's dual, "
+              "element by element)");
   g->add_option("--pin-threshold", a.pin_threshold,
                 "direct: pin an element when its certificate multiplier is at least this (multipliers sum to 1; "
                 "in (0, 1])")
@@ -144,6 +147,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out)
   o.direct.moving_rings = a.moving_rings;
   o.direct.max_steps = a.max_levels;
   o.direct.pin_essential = !a.no_pin;
+  o.direct.warm_levels = !a.level_cold_start;
   o.direct.pin_threshold = a.pin_threshold;
   o.exact.pin_essential = !a.no_pin;
   o.exact.max_elements = a.exact_max_elements;

@@ -29,6 +29,7 @@ struct SolverArgs {
   double k_min = 0.1;
   double level_gap = -1;  // direct: relative gap of the levels after the first (-1: delta_k / 100)
   bool no_pin = false;          // direct/exact: cones at the bounds instead of pinned elements
+  bool level_cold_start = false;  // direct: every level's interior-point method from a centred dual
   double pin_threshold = 1e-4;  // direct: DirectOptions::pin_threshold
   int max_levels = 100000;  // direct: cap on the levels (DirectOptions::max_steps)
   int moving_rings = 2;   // direct: vertices within this many rings of the free elements move (0: all)

@@ -62,6 +62,7 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "moving_rings") s.direct.moving_rings = integer(key, v);
   else if (key == "pin_essential") s.direct.pin_essential = s.exact.pin_essential = flag(key, v);
   else if (key == "pin_threshold") s.direct.pin_threshold = real(key, v);
+  else if (key == "warm_levels") s.direct.warm_levels = flag(key, v);
   else if (key == "exact_max_elements") s.exact.max_elements = integer(key, v);
   else if (key == "frame_iterations") s.frame_iterations = integer(key, v);
   else if (key == "threads") o.threads = integer(key, v);

@@ -261,7 +261,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   Eigen::VectorXd effective_bounds = bounds;
   for (Eigen::Index e = 0; e < effective_bounds.size(); ++e)
     if (socp::has_bound(bounds, static_cast<int>(e))) effective_bounds[e] += widened;
-  LinfWarmStart* fitting = warm && warm->fits(mp.prog.cone_size(), mp.prog.num_eq()) && warm->close_enough() ? warm : nullptr;
+  LinfWarmStart* fitting = warm && warm_start_applies(mp, *warm) ? warm : nullptr;
   // The analysis is waited for after the start's first certificate (solve_main).
   MainSolve ms = solve_main(mp, ls, start, effective_bounds, [&] {
     analysis.wait();
@@ -284,13 +284,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
     fallback_note = "the eliminated Newton systems could not be factored after " + std::to_string(first_iterations) +
                     " iterations; solved again with the equalities' penalty";
   }
-  if (warm) {  // the next solve's warm start: this one's last dual iterate, unless it failed
-    const bool sound = ms.outcome.status != socp::IpmStatus::NumericalError && !ms.stalled && ms.final_z.allFinite();
-    warm->z = sound ? std::move(ms.final_z) : Eigen::VectorXd();
-    warm->y = sound ? std::move(ms.final_y) : Eigen::VectorXd();
-    warm->cone_size = sound ? mp.prog.cone_size() : -1;
-    warm->num_eq = sound ? mp.prog.num_eq() : -1;
-  }
+  if (warm) keep_dual(mp, ms, *warm);  // the next solve's warm start, unless this one failed
   const BestSoFar& best = ms.best;
   result.iterations += ms.outcome.iterations;
   result.lower_bound = std::min(best.lower_bound, best.k);

@@ -22,6 +22,16 @@ struct LinfWarmStart {
   Eigen::VectorXd z, y;  // the last interior-point dual iterate (cones, equalities)
   long cone_size = -1;   // the program's shape it belongs to
   long num_eq = -1;
+  // Direct's levels: programs of changing shape on one problem's elements (pinned elements
+  // leave, fixed ones become bounded, the moving region shrinks). With element_z set (#E rows
+  // of kElementDualColumns), the last dual iterate is kept per element instead: row e holds
+  // element e's cone (head first; NaN where the element was not in the program), and the
+  // next program takes each of its element cones from its element's row, when at least half
+  // of them have one (linf_main_solve.cpp, warm_initialize; docs/strict.md, "Warm levels").
+  // z and y above are then unused.
+  static constexpr int kElementDualColumns = 10;  // the largest element cone: a tet's 1 + 9
+  Eigen::MatrixXd element_z;
+  bool by_element() const { return element_z.size() > 0; }
   // The relative change of the start map's maximum expected in the next solve (the caller's
   // last relative change); k starts this far above the maximum (at least 1e-4, at most 1e-2).
   double expected_change = 1e-2;

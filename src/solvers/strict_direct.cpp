@@ -11,6 +11,7 @@
 #include "option_check.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/interrupt.h"
+#include "solvers/linf_warm_start.h"
 #include "solvers/strict_pinning.h"
 
 namespace strictmin {
@@ -30,7 +31,8 @@ std::vector<char> movable_elements(const Problem& p) {
 Result solve_restricted_level(const Problem& p, const std::vector<char>& movable_element,
                               const Eigen::VectorXd& bounds, const Result& previous, const LinfOptions& linf,
                               const DirectOptions& options, const PinnedElements& pins, const LevelSolver& solve_level,
-                              int& moved_vertices, std::vector<int>& immobile) {
+                              int& moved_vertices, std::vector<int>& immobile, Eigen::MatrixXd* duals,
+                              Eigen::MatrixXd* level_duals) {
   std::vector<char> seeds(p.num_vertices, 0);
   for (int e = 0; e < p.num_elements(); ++e)
     if (movable_element[e] && bounds(e) < 0)
@@ -38,7 +40,7 @@ Result solve_restricted_level(const Problem& p, const std::vector<char>& movable
   const std::vector<char> moving = vertices_within_rings(p, seeds, options.moving_rings);
   const PinnedLevel level = pins.level_problem(p, moving, previous.positions);
   moved_vertices = level.sub.problem.num_free();
-  return solve_on_level(p, level, bounds, previous, linf, solve_level, &immobile);
+  return solve_on_level(p, level, bounds, previous, linf, solve_level, &immobile, duals, level_duals);
 }
 
 // The levels whose solve stopped short of its tolerance, for one summary at the end (a long
@@ -118,6 +120,12 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   // levels' measures); the problem's own equalities (seams) are written on each level.
   const bool pinning = options.pin_essential && !options.level_solver;
   PinnedElements pins(p);
+  // Warm levels: the last dual iterate per element (LinfWarmStart::element_z), carried from
+  // level to level; the level's solve reads and writes its own elements' rows (warm).
+  const bool warm_levels = options.warm_levels && !options.level_solver;
+  Eigen::MatrixXd duals;
+  if (warm_levels) duals.setConstant(p.num_elements(), LinfWarmStart::kElementDualColumns, NAN);
+  LinfWarmStart warm;
   for (int step = 1; free_left > 0 && k > options.k_min && step <= options.max_steps; ++step) {
     check_interrupt();  // solvers/interrupt.h
     linf.element_bounds = bounds;
@@ -130,9 +138,13 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     // widened to it below), so the solve needs no phase 1.
     const LevelSolver solve_level = [&](const Problem& problem, const LinfOptions& o, const Eigen::MatrixXd& X) -> Result {
       if (options.level_solver) return options.level_solver(problem, o, X);
-      if (&problem != &p) return solve_linf(problem, o);  // a sub-problem: its positions are X
+      LinfWarmStart* w = warm_levels ? &warm : nullptr;
+      if (&problem != &p) return solve_linf_warm(problem, o, w);  // a sub-problem: its positions are X
       level.positions = X;
-      return solve_linf(level, o);
+      if (w) warm.element_z = duals;
+      Result whole = solve_linf_warm(level, o, w);
+      if (w) duals = warm.element_z;
+      return whole;
     };
     Result r;
     int moved_vertices = -1;
@@ -140,7 +152,8 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     if (pins.count() == 0 && (step == 1 || options.moving_rings <= 0)) {
       r = solve_level(p, linf, out.positions);
     } else {
-      r = solve_restricted_level(p, movable, bounds, out, linf, options, pins, solve_level, moved_vertices, immobile);
+      r = solve_restricted_level(p, movable, bounds, out, linf, options, pins, solve_level, moved_vertices, immobile,
+                                 warm_levels ? &duals : nullptr, warm_levels ? &warm.element_z : nullptr);
     }
     // Free elements held by pinned groups are constants from now on: they are fixed at their
     // value below, and the level is the optimum over the others (the free elements here).

@@ -37,8 +37,11 @@ namespace strictmin {
 namespace {
 // A solve (a level's after the first, or a test's) that stopped short of its own criterion (a
 // relative gap of 1e-8) still decides when its certified gap is at most this fraction of the
-// tolerance: far finer than the decisions, which compare values with k - tol, need.
-constexpr double kDecidingGap = 1e-2;
+// tolerance: far finer than the decisions, which compare values with k - tol, need (a value
+// known within tol / 10 is misplaced only where it lies within tol / 10 of k - tol). At 1e-2
+// before: with OpenBLAS's Cooperlake kernels (an AMD EPYC VM, 2026-11-26) the 58th and last
+// level of the seamed bulged frame (k = 0.0051) stalls at a certified gap of 4.7e-7, tol / 21.
+constexpr double kDecidingGap = 1e-1;
 }  // namespace
 
 bool ExactOptions::is_valid(std::string* why) const {
@@ -194,7 +197,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   }
   if (short_solves > 0) {
     const std::string note = std::to_string(short_solves) + " of " + std::to_string(solves) +
-                             " solves stopped short of their gap but within tolerance / 100 and decided their level or test";
+                             " solves stopped short of their gap but within tolerance / 10 and decided their level or test";
     out.message = out.message.empty() ? note : out.message + "; " + note;
   }
   out.time_s = seconds_since(t0);

@@ -183,7 +183,7 @@ void PinnedLevel::scatter(const Eigen::MatrixXd& level_positions, Eigen::MatrixX
 
 Result solve_on_level(const Problem& p, const PinnedLevel& level, const Eigen::VectorXd& bounds,
                       const Result& previous, const LinfOptions& linf, const LevelSolver& solve,
-                      std::vector<int>* immobile_free) {
+                      std::vector<int>* immobile_free, Eigen::MatrixXd* duals, Eigen::MatrixXd* level_duals) {
   const Subproblem& sub = level.sub;
   const int E = p.num_elements();
   std::vector<char> in_level(E, 0);
@@ -212,7 +212,17 @@ Result solve_on_level(const Problem& p, const PinnedLevel& level, const Eigen::V
   LinfOptions o = linf;
   o.element_bounds.resize(static_cast<Eigen::Index>(sub.element.size()));
   for (size_t i = 0; i < sub.element.size(); ++i) o.element_bounds[static_cast<Eigen::Index>(i)] = bounds(sub.element[i]);
+  const bool move_duals = duals && level_duals;
+  const auto n_level = static_cast<Eigen::Index>(sub.element.size());
+  if (move_duals) {
+    level_duals->resize(n_level, duals->cols());
+    for (Eigen::Index i = 0; i < n_level; ++i) level_duals->row(i) = duals->row(sub.element[i]);
+  }
   Result r = solve(sub.problem, o, sub.problem.positions);
+  if (move_duals && level_duals->rows() == n_level) {
+    duals->setConstant(NAN);  // the elements left out have none from this level
+    for (Eigen::Index i = 0; i < n_level; ++i) duals->row(sub.element[i]) = level_duals->row(i);
+  }
   full.status = r.status;
   full.message = r.message;
   full.iterations = r.iterations;

@@ -75,8 +75,12 @@ class PinnedElements {
 // to move, the map in hand is the level's exact optimum. immobile (if given) receives those
 // free elements left out (they stay constant at every later level too: held groups stay held),
 // and the lower bound is then the solve's own, over the level's other free elements.
+// duals (if given): the last dual iterate per element of p (LinfWarmStart::element_z rows),
+// moved into level_duals (the rows of the level's elements, which `solve` reads and writes)
+// before the solve, and back after it.
 Result solve_on_level(const Problem& p, const PinnedLevel& level, const Eigen::VectorXd& bounds,
                       const Result& previous, const LinfOptions& linf, const LevelSolver& solve,
-                      std::vector<int>* immobile = nullptr);
+                      std::vector<int>* immobile = nullptr, Eigen::MatrixXd* duals = nullptr,
+                      Eigen::MatrixXd* level_duals = nullptr);
 
 }  // namespace strictmin

@@ -55,6 +55,10 @@ struct DirectOptions {
   // on problems with equalities (gparam's seams) too; elsewhere ignored.
   bool pin_essential = true;
   double pin_threshold = 1e-4;
+  // Start each level's interior-point method from the previous level's last dual iterate,
+  // element by element (docs/strict.md, "Warm levels"): a fifth to a third fewer iterations.
+  // Only through solve_linf (no level_solver). false: every level from a centred dual.
+  bool warm_levels = true;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
 
