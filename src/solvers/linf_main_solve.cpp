@@ -38,7 +38,7 @@ constexpr double kWarmLift = 0.1;
 // Direct's levels, warm by element (linf_warm_start.h): the band and the essential elements of
 // the last level leave the k equation (they are bounded or pinned now), so the kept dual is
 // further from the next level's; a lift of 1 kept cow's first 40 levels at 334 interior-point
-// iterations (0.03: 442, 0.1: about 390, 0.3: 346, 3: 319, cold: 411).
+// iterations (0.1: 393, cold: 411; docs/strict.md, "Warm levels").
 constexpr double kElementWarmLift = 1.0;
 // The cold start of a program with fixed bounds and equalities (the levels of gparam's
 // direct): the bounded cones' heads kBoundedLift * margin above the bound (or the start map's
