@@ -270,7 +270,7 @@ TEST(PinnedElements, WarmLevelsMatchColdLevelsInFewerIterations) {
   for (int i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
   std::printf("warm %d levels, %d iterations; cold %d levels, %d iterations; largest difference at a rank %.3g\n",
               warm.iterations, warm_iterations, cold.iterations, cold_iterations, largest);
-  EXPECT_LT(largest, 5 * o.delta_k);
+  EXPECT_LT(largest, 2 * o.delta_k);  // measured 4.9e-4: the band's membership at delta-k
   EXPECT_LT(warm_iterations, cold_iterations);
 }
 

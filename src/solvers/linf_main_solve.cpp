@@ -104,11 +104,11 @@ bool warm_start_applies(const MainProgram& mp, const LinfWarmStart& warm) {
   return 2 * kept >= mp.prog.num_element_cones();
 }
 
-void keep_dual(const MainProgram& mp, const MainSolve& ms, LinfWarmStart& warm) {
+void keep_dual(const MainProgram& mp, MainSolve& ms, LinfWarmStart& warm) {
   const bool sound = ms.outcome.status != socp::IpmStatus::NumericalError && !ms.stalled && ms.final_z.allFinite();
   if (!warm.by_element()) {
-    warm.z = sound ? ms.final_z : Eigen::VectorXd();
-    warm.y = sound ? ms.final_y : Eigen::VectorXd();
+    warm.z = sound ? std::move(ms.final_z) : Eigen::VectorXd();
+    warm.y = sound ? std::move(ms.final_y) : Eigen::VectorXd();
     warm.cone_size = sound ? mp.prog.cone_size() : -1;
     warm.num_eq = sound ? mp.prog.num_eq() : -1;
     return;

@@ -40,7 +40,7 @@ struct MainSolve {
 // after a large change; or, by element, with a kept cone for at least half of mp's cones.
 bool warm_start_applies(const MainProgram& mp, const LinfWarmStart& warm);
 // Keeps ms's last dual iterate in `warm` for the next solve (emptied when ms failed or stalled).
-void keep_dual(const MainProgram& mp, const MainSolve& ms, LinfWarmStart& warm);
+void keep_dual(const MainProgram& mp, MainSolve& ms, LinfWarmStart& warm);
 
 // Runs phase 2 from `start` (which meets the bounds). `effective_bounds` are the element
 // bounds as widened by the start's round-off; records every iteration in `history` (and

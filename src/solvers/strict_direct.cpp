@@ -141,9 +141,9 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
       LinfWarmStart* w = warm_levels ? &warm : nullptr;
       if (&problem != &p) return solve_linf_warm(problem, o, w);  // a sub-problem: its positions are X
       level.positions = X;
-      if (w) warm.element_z = duals;
+      if (w) warm.element_z.swap(duals);  // the whole problem's rows are the level's: lent, not copied
       Result whole = solve_linf_warm(level, o, w);
-      if (w) duals = warm.element_z;
+      if (w) warm.element_z.swap(duals);
       return whole;
     };
     Result r;

@@ -56,7 +56,8 @@ struct DirectOptions {
   bool pin_essential = true;
   double pin_threshold = 1e-4;
   // Start each level's interior-point method from the previous level's last dual iterate,
-  // element by element (docs/strict.md, "Warm levels"): a fifth to a third fewer iterations.
+  // element by element (docs/strict.md, "Warm levels"): a tenth to a third fewer iterations
+  // (homer 11%, cow 19%, horse's levels 2-8 37%).
   // Only through solve_linf (no level_solver). false: every level from a centred dual.
   bool warm_levels = true;
   std::function<void(const StrictStep&)> progress;
