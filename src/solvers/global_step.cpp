@@ -21,7 +21,10 @@ Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap, double 
   Result r;
   if (sweeper_) {
     r.positions = X;
-    sweeper_->sweep(p, r.positions);
+    IterationRecord sweep;
+    sweep.iteration = 1;
+    sweep.largest_move = sweeper_->sweep(p, r.positions);
+    r.history.push_back(sweep);
     r.iterations = 1;
     return r;
   }

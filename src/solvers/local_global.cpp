@@ -183,6 +183,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     rec.max_distortion = current;
     rec.lower_bound = r.lower_bound;
     rec.relative_change = last_change;
+    if (step.is_sweep() && !r.history.empty()) rec.largest_move = r.history.back().largest_move;
     if (accelerate) {
       rec.accelerated_accepted = accepted;
       rec.accelerated_rejected = rejected;

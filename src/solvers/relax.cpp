@@ -16,13 +16,34 @@ namespace strictmin {
 
 using namespace relax_detail;
 
-struct RelaxSweeper::Impl : SweepData {};
+// A seamless problem (copies of a vertex related by the seams' transitions) sweeps its groups
+// of copies (relax_copies.h); every other problem its vertices (relax_sweep.h).
+struct RelaxSweeper::Impl : SweepData {
+  std::unique_ptr<CopiesSweeper> copies;
+};
+
+namespace {
+bool sweeps_copies(const Problem& p) {
+  return p.has_equalities() && p.copy_base.size() == static_cast<size_t>(p.num_vertices) && p.image_dim == 2;
+}
+
+void check_no_flips_with_copies(const Problem& p, bool no_flips) {
+  if (no_flips && sweeps_copies(p))
+    throw InputError("relax: --no-flips is not available with seams (seamless problems) yet");
+}
+}  // namespace
 
 RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_flips)
     : accept_tolerance_(accept_tolerance) {
+  check_no_flips_with_copies(p, no_flips);
   check_no_flips(p, no_flips);
   auto impl = std::make_shared<Impl>();
-  build(p, *impl);
+  if (sweeps_copies(p)) {
+    impl->copies = std::make_unique<CopiesSweeper>(p);
+    impl->colouring = impl->copies->colouring();
+  } else {
+    build(p, *impl);
+  }
   impl->no_flips = no_flips;
   impl_ = std::move(impl);
 }
@@ -34,6 +55,7 @@ double RelaxSweeper::sweep(const Problem& problem, Eigen::MatrixXd& X, double* m
     throw InputError("relax: the map has " + std::to_string(X.rows()) + " by " + std::to_string(X.cols()) +
                      " entries, expected " + std::to_string(problem.num_vertices) + " by " +
                      std::to_string(impl_->dim));
+  if (impl_->copies) return impl_->copies->sweep(problem, X, accept_tolerance_, max_distortion);
   Deviations dev;
   return sweep_any(*impl_, problem, X, dev, accept_tolerance_, max_distortion);
 }
@@ -97,9 +119,8 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
     result.time_s = elapsed();
     return result;
   }
-  if (problem.has_equalities() && problem.copy_base.size() == static_cast<size_t>(problem.num_vertices) &&
-      problem.image_dim == 2) {
-    if (options.no_flips) throw InputError("relax: --no-flips is not available with seams (seamless problems) yet");
+  if (sweeps_copies(problem)) {
+    check_no_flips_with_copies(problem, options.no_flips);
     return relax_with_copies(problem, X, options);
   }
   check_no_flips(problem, options.no_flips);

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -75,6 +76,7 @@ struct Rotations {
 };
 
 struct Groups {
+  VertexColouring colouring;               // of the group bases (their surface vertex)
   std::vector<int> order;                  // group bases, colour by colour
   std::vector<int> colour_offsets;
   std::vector<int> member_start;           // per position in order
@@ -130,8 +132,9 @@ Groups make_groups(const Problem& p) {
   Eigen::MatrixXi grouped(E, c);
   for (int e = 0; e < E; ++e)
     for (int j = 0; j < c; ++j) grouped(e, j) = base_of(p, p.elements(e, j));
-  const VertexColouring col = colour_free_vertices(grouped, held);
   Groups g;
+  g.colouring = colour_free_vertices(grouped, held);
+  const VertexColouring& col = g.colouring;
   g.order = col.order;
   g.colour_offsets = col.offsets;
   const int n = static_cast<int>(g.order.size());
@@ -322,29 +325,80 @@ void move_groups(const Problem& p, const Groups& g, int begin, int end, double t
   for (int i = begin; i != end; ++i) move_group(p, g, i, tolerance, sc, X, D, acc);
 }
 
-}  // namespace
+using ScratchPool = tbb::enumerable_thread_specific<Scratch>;
 
-Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const RelaxOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  const Groups g = make_groups(p);
-  Result result;
-  Eigen::MatrixXd X = initial;
-  std::vector<Mat2> D;
-  int age = -1;  // sweeps since D was computed from X
-  tbb::enumerable_thread_specific<Scratch> scratch([&] {
+ScratchPool make_scratch(const Groups& g) {
+  return ScratchPool([&g] {
     Scratch sc;
     sc.terms.resize(g.max_ring);
     for (auto* v : {&sc.current, &sc.before, &sc.after, &sc.area}) v->resize(g.max_ring);
     sc.order.resize(2 * g.max_ring);
     return sc;
   });
+}
+
+// One sweep over every moving group, colour by colour (the groups of a colour in parallel),
+// updating X and D: the largest move and the largest D_T^2 after the sweep.
+Accumulator sweep_groups(const Problem& p, const Groups& g, double tolerance, ScratchPool& scratch,
+                         Eigen::MatrixXd& X, std::vector<Mat2>& D) {
   const auto join = [](Accumulator x, const Accumulator& y) {
     x.move = std::max(x.move, y.move);
     x.top = std::max(x.top, y.top);
     return x;
   };
+  Accumulator total;
+  for (int e : g.closed) total.top = std::max(total.top, D[e].squaredNorm());
   const int colours = static_cast<int>(g.colour_offsets.size()) - 1;
+  for (int c = 0; c < colours; ++c) {
+    const tbb::blocked_range<int> range(g.colour_offsets[c], g.colour_offsets[c + 1], 128);
+    total = join(total, tbb::parallel_reduce(range, Accumulator{}, [&](const tbb::blocked_range<int>& r, Accumulator acc) {
+      Scratch& sc = scratch.local();
+      move_groups(p, g, r.begin(), r.end(), tolerance, sc, X, D, acc);
+      return acc;
+    }, join));
+  }
+  return total;
+}
+
+}  // namespace
+
+struct CopiesSweeper::State {
+  explicit State(const Problem& p) : groups(make_groups(p)), scratch(make_scratch(groups)) {}
+  Groups groups;
+  ScratchPool scratch;
+  std::vector<Mat2> D;
+  std::mutex busy;  // one sweep at a time: D and the groups' flags are the sweeper's
+};
+
+CopiesSweeper::CopiesSweeper(const Problem& p) : state_(std::make_unique<State>(p)) {}
+
+CopiesSweeper::~CopiesSweeper() = default;
+
+const VertexColouring& CopiesSweeper::colouring() const { return state_->groups.colouring; }
+
+double CopiesSweeper::sweep(const Problem& p, Eigen::MatrixXd& X, double accept_tolerance,
+                            double* max_distortion) const {
+  State& s = *state_;
+  const std::lock_guard<std::mutex> lock(s.busy);
+  // The targets may have changed since the last sweep (a local step): every group looks
+  // again, from deviations computed afresh.
+  compute_deviations(p, X, s.D);
+  const int n = static_cast<int>(s.groups.order.size());
+  for (int i = 0; i < n; ++i) s.groups.dirty[i].store(1, std::memory_order_relaxed);
+  const Accumulator total = sweep_groups(p, s.groups, accept_tolerance, s.scratch, X, s.D);
+  if (max_distortion) *max_distortion = std::sqrt(total.top);
+  return total.move;
+}
+
+Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const RelaxOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const Groups g = make_groups(p);
+  ScratchPool scratch = make_scratch(g);
+  Result result;
+  Eigen::MatrixXd X = initial;
+  std::vector<Mat2> D;
+  int age = -1;  // sweeps since D was computed from X
   bool moves_settled = false;
   for (int s = 1; s <= options.sweeps; ++s) {
     check_interrupt();  // solvers/interrupt.h
@@ -352,16 +406,7 @@ Result relax_with_copies(const Problem& p, const Eigen::MatrixXd& initial, const
       compute_deviations(p, X, D);
       age = 0;
     }
-    Accumulator total;
-    for (int e : g.closed) total.top = std::max(total.top, D[e].squaredNorm());
-    for (int c = 0; c < colours; ++c) {
-      const tbb::blocked_range<int> range(g.colour_offsets[c], g.colour_offsets[c + 1], 128);
-      total = join(total, tbb::parallel_reduce(range, Accumulator{}, [&](const tbb::blocked_range<int>& r, Accumulator acc) {
-        Scratch& sc = scratch.local();
-        move_groups(p, g, r.begin(), r.end(), options.accept_tolerance, sc, X, D, acc);
-        return acc;
-      }, join));
-    }
+    const Accumulator total = sweep_groups(p, g, options.accept_tolerance, scratch, X, D);
     ++age;
     IterationRecord record;
     record.iteration = s;

@@ -1,7 +1,10 @@
 #pragma once
 // Internal: relaxation sweeps that move each group of copies (seam wedges) as one point.
+#include <memory>
+
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/relax.h"
+#include "strictmin/solvers/vertex_colouring.h"
 
 namespace strictmin::relax_detail {
 
@@ -17,5 +20,22 @@ void set_relax_status(Result& result, const RelaxOptions& options, bool moves_se
 bool record_sweep(Result& result, const RelaxOptions& options, const IterationRecord& record);
 
 Result relax_with_copies(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options);
+
+// The sweep of relax_with_copies kept across calls, one sweep a call: local-global's relax
+// steps (--measure arap|asap --method relax on a seamless problem), whose targets change
+// between sweeps. Same preconditions as relax_with_copies; sweeps are serialized.
+class CopiesSweeper {
+ public:
+  explicit CopiesSweeper(const Problem& problem);
+  ~CopiesSweeper();
+  // One sweep of X (#V by 2) in place for the problem's current targets: the largest move;
+  // *max_distortion (if not null) the largest field deviation after the sweep.
+  double sweep(const Problem& problem, Eigen::MatrixXd& X, double accept_tolerance, double* max_distortion) const;
+  const VertexColouring& colouring() const;  // of the groups' surface vertices
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace strictmin::relax_detail
