@@ -2,6 +2,7 @@
 
 #include <tbb/global_control.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -131,6 +132,15 @@ void check_output_paths(const std::vector<std::pair<std::string, std::string>>& 
       throw InputError(flag + " " + path + ": the folder " + parent.string() + " does not exist");
     if (fs::is_directory(path, ec)) throw InputError(flag + " " + path + ": is a folder, not a file");
   }
+}
+
+void check_uv_output_path(const std::string& path) {
+  if (path.empty()) return;
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".obj")
+    throw InputError("--output " + path + ": the map is written as per-corner texture coordinates (vt, f v/vt), "
+                     "which only .obj holds; use a .obj name");
 }
 
 void check_output_paths(const OutputOptions& out) {

@@ -55,6 +55,9 @@ void print_local_global_progress(const IterationRecord& r, const std::string& in
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
 // The same for the common output options (--summary, --distortion).
 void check_output_paths(const OutputOptions& out);
+// A map written as vt (param, gparam): only .obj holds it; any other extension is refused
+// before the solve (an .off or .ply would silently keep the input alone).
+void check_uv_output_path(const std::string& path);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "gparam_report.h"
+#include "common.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/tasks/gparam.h"
@@ -34,10 +35,19 @@ ReportSection write_gparam_demo_section(const std::string& dir, const Comparison
     o.field_options.pin_face = 0;  // the global angle: along the cubes' edges (else any angle)
     const GParamOutcome g = global_parametrize(frame, o, "bulged frame");
     const std::string name = method_name(m);
-    write_mesh((fs::path(dir) / "gparam" / (name + ".obj")).string(), g.mapped);
+    const fs::path folder = fs::path(dir) / "gparam";
+    write_mesh((folder / (name + ".obj")).string(), g.mapped);
+    // The result as `gparam -o --distortion --summary` writes it (strictmin report reads these).
+    OutputOptions files;
+    files.summary = (folder / (name + ".json")).string();
+    files.distortion = (folder / (name + ".txt")).string();
+    write_outputs(files,
+                  gparam_summary(frame, o, g, o.field_kind(), {"example:bulged-frame", name + ".obj", name + ".txt"}),
+                  g.measured.distortion);
     const auto pictures = write_gparam_pictures((fs::path(dir) / "gparam").string(), name, frame, g, options.scale);
     MethodRun run = method_run(name, g);
-    run.links = {{"UV mesh", "gparam/" + name + ".obj"},
+    run.links = {{"summary", "gparam/" + name + ".json"},
+                 {"UV mesh", "gparam/" + name + ".obj"},
                  {"seams and singularities", "gparam/" + pictures[0]},
                  {"unit grid", "gparam/" + pictures[1]}};
     all_solved = all_solved && g.result.ok();

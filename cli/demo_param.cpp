@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "report_output.h"
+#include "common.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/surface_generators.h"
 #include "strictmin/tasks/param.h"
@@ -31,9 +32,16 @@ ReportSection write_param_demo_section(const std::string& dir, const ComparisonO
     o.solver.method = m;
     const ParamOutcome p = parametrize(cap, o, "spherical cap");
     const std::string name = method_name(m);
-    write_mesh((fs::path(dir) / "param" / (name + ".obj")).string(), p.mapped);
+    const fs::path folder = fs::path(dir) / "param";
+    write_mesh((folder / (name + ".obj")).string(), p.mapped);
+    // The result as `param -o --distortion --summary` writes it (strictmin report reads these).
+    OutputOptions files;
+    files.summary = (folder / (name + ".json")).string();
+    files.distortion = (folder / (name + ".txt")).string();
+    write_outputs(files, param_summary(cap, o, p, {"example:spherical-cap", name + ".obj", name + ".txt"}),
+                  p.measured.distortion);
     MethodRun run = method_run(name, p, o.measure);
-    run.links = {{"UV mesh", "param/" + name + ".obj"}};
+    run.links = {{"summary", "param/" + name + ".json"}, {"UV mesh", "param/" + name + ".obj"}};
     all_solved = all_solved && p.result.ok();
     char line[200];
     std::snprintf(line, sizeof line, "demo: param   %-7s max %.5f  L2 %.5f  flips %d  %.2f s  %s", name.c_str(),

@@ -1,9 +1,11 @@
 // strictmin gparam MESH -o OUT.obj [--field smoothest|unit|curvature|FILE] [--cones FILE]
 //   [--field-out FILE] [--cones-out FILE]
 //   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "commands.h"
@@ -12,6 +14,7 @@
 #include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/field/surface_graph.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/tasks/gparam.h"
 
@@ -55,6 +58,9 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
     o.field_source = a.cones;
   }
   if (a.field != "smoothest" && a.field != "curvature" && a.field != "unit") {
+    std::error_code ec;
+    if (!std::filesystem::exists(a.field, ec))
+      throw InputError("--field " + a.field + ": not smoothest, unit or curvature, and no such file");
     o.field = read_field_file(a.field, mesh.num_elements());
     o.field_source = a.field;
   }
@@ -73,10 +79,16 @@ int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_paths(a.out);
   check_output_paths({{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}});
+  check_uv_output_path(a.output);
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
   std::vector<std::string> warnings;
   const Mesh mesh = read_mesh(a.mesh, &warnings);
+  // Unused vertices, which the other tasks ignore with a warning, are refused here (the
+  // surface graph's message): their warning would say the opposite of the error that follows.
+  std::vector<char> used(static_cast<size_t>(mesh.V.rows()), 0);
+  for (Eigen::Index i = 0; i < mesh.F.size(); ++i) used[static_cast<size_t>(mesh.F.data()[i])] = 1;
+  if (std::find(used.begin(), used.end(), 0) != used.end()) surface_graph(mesh, a.mesh);  // throws, naming the vertex
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
   const GParamOptions o = make_options(a, mesh);
   progress(a.out, "gparam: " + std::to_string(mesh.num_elements()) + " triangles, method " +
@@ -113,7 +125,7 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
                   "file with one 3D direction per face per line")
       ->capture_default_str();
   cmd->add_option("--curvature-alignment", args->curvature_alignment,
-                  "--field curvature: how closely the field follows the principal directions (smaller: smoother)")
+                  "--field curvature: how closely the field follows the principal directions (smaller: smoother; > 0)")
       ->capture_default_str();
   cmd->add_option("--field-out", args->field_out, "Write the field used, one direction per face per line");
   cmd->add_option("--cones", args->cones,
@@ -124,8 +136,10 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
                  "those cones): lower smoothness energy and maximum distortion, a few Laplacian solves more");
   cmd->add_option("--cones-out", args->cones_out, "Write the field's singularities as a cone file (the --cones format)");
 
-  cmd->add_option("--edge-length", args->edge_length, "Target edge length h: a surface length h maps to 1 in UV");
-  cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000)");
+  cmd->add_option("--edge-length", args->edge_length,
+                  "Target edge length h: a surface length h maps to 1 in UV (> 0, within 1e-9 to 1e9 times the square "
+                  "root of the surface's area)");
+  cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap (>= 1)")

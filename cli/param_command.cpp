@@ -49,6 +49,7 @@ int run_param(ParamArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_paths(a.out);
   check_output_paths({{"--output", a.output}});
+  check_uv_output_path(a.output);
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);

@@ -89,7 +89,7 @@ void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& a) {
                   "arap/asap: extrapolate each target along its last change by this factor before a global step "
                   "(a momentum on the rotations, 0: off); a step that raises the maximum is repeated without")
       ->capture_default_str()
-      ->check(greater_than(0))
+      ->check(at_least(0))  // 0: off; at_least also refuses nan
       ->check(CLI::Range(0.0, 1.0));
   cmd.add_flag("--lg-cold-start", a.lg_cold_start,
                 "arap/asap with linf/direct: start every global step's interior-point method afresh (default: from "

@@ -8,13 +8,13 @@
 #include "strictmin/field/cone_field.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 
 std::vector<int> read_cone_file(const std::string& path, int num_vertices) {
   constexpr double kQuarter = std::numbers::pi / 2;
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read cone file " + path);
+  std::istringstream in(io_detail::read_text_file(path));  // "cannot read PATH: the reason"
   std::vector<int> quarters;
   std::string text;
   long line = 0;

@@ -8,12 +8,12 @@
 #include "strictmin/field/cross_field.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 
 Eigen::MatrixXd read_field_file(const std::string& path, int num_faces) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read field file " + path);
+  std::istringstream in(io_detail::read_text_file(path));  // "cannot read PATH: the reason"
   std::vector<double> values;
   std::string text;
   long line = 0, rows = 0;

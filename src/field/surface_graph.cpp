@@ -116,7 +116,9 @@ SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source) 
   g.fan_start.assign(g.num_vertices + 1, 0);
   for (int v = 0; v < g.num_vertices; ++v) {
     if (degree[v] == 0)
-      throw InputError(prefix(source) + "vertex " + std::to_string(v) + " belongs to no face");
+      throw InputError(prefix(source) + "vertex " + std::to_string(v) +
+                       " (0-based) belongs to no face: a global parametrization needs every vertex on the surface "
+                       "(singularities and cone files are per vertex); remove the unused vertices");
     g.fan_start[v + 1] = g.fan_start[v] + degree[v];
   }
   g.fan_faces.resize(g.fan_start.back());

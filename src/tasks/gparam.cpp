@@ -1,6 +1,7 @@
 // Global seamless parametrization: the phases, each a named step (docs/gparam.md).
 #include "strictmin/tasks/gparam.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,31 @@ void check_options(const GParamOptions& o) {
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
+}
+
+double surface_area(const Mesh& mesh) {
+  double area = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::RowVectorXd u = mesh.V.row(mesh.F(f, 1)) - mesh.V.row(mesh.F(f, 0)),
+                             v = mesh.V.row(mesh.F(f, 2)) - mesh.V.row(mesh.F(f, 0));
+    area += 0.5 * std::sqrt(std::max(0.0, u.squaredNorm() * v.squaredNorm() - u.dot(v) * u.dot(v)));
+  }
+  return area;
+}
+
+// The texture coordinates are the map divided by the edge length: an edge length far out of
+// the surface's scale (sqrt of its area) makes them overflow or lose every digit. Refused
+// before any work, naming the flag and the scale.
+void check_edge_length_scale(const Mesh& mesh, const GParamOptions& o) {
+  if (!(o.edge_length > 0)) return;  // --quads: sqrt(area / quads), in scale by construction
+  const double scale = std::sqrt(surface_area(mesh));
+  if (o.edge_length >= 1e-9 * scale && o.edge_length <= 1e9 * scale) return;
+  char why[200];
+  std::snprintf(why, sizeof why,
+                "--edge-length %g is out of scale for this surface (the square root of its area is %g): use a value "
+                "within 1e-9 to 1e9 times that",
+                o.edge_length, scale);
+  throw InputError(why);
 }
 
 void say(const GParamOptions& o, const std::string& line) {
@@ -127,6 +153,11 @@ void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   out.mapped.UV = X / out.edge_length;
   out.mapped.FUV = out.cut.corner_wedge;
   branch_translations(mesh, out.graph, out.cut, out.mapped.UV, &out.seam_error);
+  if (out.result.usable() && !out.mapped.UV.allFinite()) {  // a safety net: the scale check should prevent it
+    out.result.status = SolveStatus::NumericalError;
+    out.result.message = "the texture coordinates (the map / the edge length " + std::to_string(out.edge_length) +
+                         ") are not finite; " + out.result.message;
+  }
 }
 
 }  // namespace
@@ -137,6 +168,7 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   const auto t0 = std::chrono::steady_clock::now();
   out.graph = surface_graph(mesh, source);
   out.graph_time_s = seconds_since(t0);
+  check_edge_length_scale(mesh, o);  // on the checked surface
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   compute_field(mesh, o, out);
   compute_cut(mesh, o, out);

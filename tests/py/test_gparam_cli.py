@@ -221,6 +221,23 @@ class GParam(unittest.TestCase):
         fins = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"
         self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
         self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])
+        # Out of the surface's scale (sqrt(area) = 2.45 here): the UV would overflow (1e-320 gave
+        # inf texture coordinates reported as solved) or lose every digit.
+        for h in ("1e-320", "1e-12", "1e12"):
+            self.expect_bad([self.cube, "--edge-length", h], ["--edge-length", "out of scale", "square root of its area"])
+        # The map is per-corner vt: only .obj holds it (.off and .ply kept the input alone).
+        for ext in ("off", "ply"):
+            out = self.out("uv." + ext)
+            p = run("gparam", self.cube, "-o", out, check_code=1)
+            self.assertIn("only .obj", p.stderr)
+            self.assertFalse(os.path.exists(out))
+        # A vertex used by no face: one message, not a warning that it is ignored and then an error.
+        unused = self.write("unused.obj", "v 9 9 9\n" + "\n".join(
+            l if not l.startswith("f ") else "f " + " ".join(str(int(i) + 1) for i in l.split()[1:]) for l in lines) + "\n")
+        p = run("gparam", unused, "-o", self.out("bad.obj"), check_code=1)
+        self.assertIn("vertex 0 (0-based) belongs to no face", p.stderr)
+        self.assertNotIn("ignored", p.stderr)
+        self.expect_bad([self.cube, "--field", "smoothes"], ["--field smoothes", "not smoothest, unit or curvature"])
         self.expect_bad([self.cube, "--edge-length", "-1"], ["--edge-length"])
         self.expect_bad([self.cube, "--quads", "0"], ["--quads"])
         self.expect_bad([self.cube, "--field", "curvature", "--curvature-alignment", "0"], ["--curvature-alignment"])
@@ -243,6 +260,31 @@ class GParam(unittest.TestCase):
                         ["odd.txt", "line 1", "quarter turns"])
         self.expect_bad([self.cube, "--cones", self.write("few.txt", "".join(flat[1:]))], ["few.txt", "angles for"])
         self.expect_bad([self.cube, "--cones", self.out("flat.txt"), "--field", "unit"], ["--cones", "not both"])
+
+    def test_arap_relax_and_extrapolation_off(self):
+        # --measure arap --method relax on a seamed surface (it failed after its linf start);
+        # --lg-extrapolation 0 turns the extrapolation off (it was refused). A cube with its
+        # vertices moved a little (deterministically), so that there is distortion to spread.
+        lines, _ = cube_obj(n=4)
+        bumpy, k = [], 0
+        for l in lines:
+            if l.startswith("v "):
+                x, y, z = (float(t) for t in l.split()[1:])
+                k += 1
+                x, y, z = (c + 0.05 * math.sin(7.3 * k + i) for i, c in enumerate((x, y, z)))
+                l = f"v {x} {y} {z}"
+            bumpy.append(l)
+        mesh = self.write("bumpy.obj", "\n".join(bumpy) + "\n")
+        linf = self.gparam(mesh, "--measure", "arap", "--method", "linf")
+        for extra in ([], ["--lg-extrapolation", "0"]):
+            s = self.gparam(mesh, "-o", self.out("arap.obj"), "--measure", "arap", "--method", "relax",
+                            "--sweeps", "5", *extra)
+            self.assertEqual(s["status"], "solved", s.get("message"))
+            self.assertEqual(s["sweeps"], 5)
+            self.assertGreater(s["local_global_iterations"], 5)  # the linf start's steps, then the sweeps
+            self.assertLess(s["seam_error"], 1e-9)
+            self.assertGreater(s["max_distortion"], 1e-3)
+            self.assertLessEqual(s["max_distortion"], linf["max_distortion"] * (1 + 1e-9))
 
     def test_cow_relax_report(self):
         cow = os.path.join(DATA, "closed", "cow.obj")

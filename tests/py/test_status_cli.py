@@ -17,6 +17,7 @@ class OptionRanges(unittest.TestCase):
         ("--level-gap", "2"), ("--moving-rings", "-1"), ("--exact-max-elements", "0"),
         ("--lg-iterations", "0"), ("--lg-tolerance", "-1"), ("--threads", "-1"), ("--delta-k", "abc"),
         ("--frame-iterations", "0"), ("--lg-extrapolation", "1.5"), ("--lg-extrapolation", "-0.1"),
+        ("--lg-extrapolation", "nan"),
         ("--lg-acceleration", "51"), ("--max-levels", "0"), ("--pin-threshold", "0"), ("--pin-threshold", "1.5"),
     ]
 
