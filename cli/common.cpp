@@ -147,6 +147,28 @@ void check_output_paths(const OutputOptions& out) {
   check_output_paths({{"--summary", out.summary}, {"--distortion", out.distortion}});
 }
 
+void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std::string, std::string>>& task_outputs,
+                       const std::string& report_dir) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> all = task_outputs;
+  all.push_back({"--summary", out.summary});
+  all.push_back({"--distortion", out.distortion});
+  check_output_paths(all);
+  std::vector<std::pair<fs::path, std::string>> seen;
+  for (const auto& [flag, path] : all) {
+    if (path.empty() || path == "-") continue;
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec) key = fs::absolute(path).lexically_normal();
+    for (const auto& [other, other_flag] : seen)
+      if (other == key) throw InputError(flag + " " + path + ": " + other_flag + " writes the same file");
+    seen.push_back({key, flag});
+  }
+  std::error_code ec;
+  if (!report_dir.empty() && fs::exists(report_dir, ec) && !fs::is_directory(report_dir, ec))
+    throw InputError("--report " + report_dir + ": is a file, not a folder");
+}
+
 void progress(const OutputOptions& out, const std::string& line) {
   if (!out.quiet) std::cerr << line << std::endl;
 }

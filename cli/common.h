@@ -55,8 +55,14 @@ void print_local_global_progress(const IterationRecord& r, const std::string& in
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
 // The same for the common output options (--summary, --distortion).
 void check_output_paths(const OutputOptions& out);
-// A map written as vt (param, gparam): only .obj holds it; any other extension is refused
-// before the solve (an .off or .ply would silently keep the input alone).
+// Every output of a run at once, before any work: the checks above for the task's own
+// outputs and the common ones, no two flags naming one file (the later write would replace
+// the earlier), and the report folder (when given) not an existing file.
+void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std::string, std::string>>& task_outputs,
+                       const std::string& report_dir);
+// gparam's map is per-corner vt (f v/vt): only .obj holds it; any other extension is refused
+// before the solve (an .off or .ply would silently keep the input alone). param, whose map is
+// one vt per vertex, writes other formats without it, as documented.
 void check_uv_output_path(const std::string& path);
 
 // Progress line on stderr unless quiet.

@@ -26,8 +26,7 @@ struct DeformArgs {
 
 int run_deform(const DeformArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_output_paths(a.out);
-  check_output_paths({{"--output", a.output}});
+  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir);
   const auto threads = limit_threads(a.out.threads);
   DeformOptions options;
   options.solver = make_solver_options(a.solver, a.out);

@@ -77,8 +77,8 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
 
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_output_paths(a.out);
-  check_output_paths({{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}});
+  check_run_outputs(a.out, {{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}},
+                    a.report.dir);
   check_uv_output_path(a.output);
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");

@@ -83,7 +83,7 @@ int parse_pin(const std::string& pin) {
 
 int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_output_paths(a.out);
+  check_run_outputs(a.out, {}, a.report.dir);
   const auto threads = limit_threads(a.out.threads);
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);
@@ -91,8 +91,14 @@ int run_interp(const InterpArgs& a) {
   options.local_global.relative_change = a.lg_tolerance;
   options.pin_vertex = parse_pin(a.pin);
   if (a.times.empty()) throw InputError("--t needs at least one time in [0, 1]");
-  for (double t : a.times)
-    if (!(t >= 0.0 && t <= 1.0)) throw InputError("--t: " + std::to_string(t) + " is outside [0, 1]");
+  for (size_t i = 0; i < a.times.size(); ++i) {
+    const double t = a.times[i];
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%g", t);
+    if (!(t >= 0.0 && t <= 1.0)) throw InputError(std::string("--t: ") + shown + " is outside [0, 1]");
+    for (size_t j = 0; j < i; ++j)
+      if (a.times[j] == t) throw InputError(std::string("--t: ") + shown + " is given twice (each time writes its own file)");
+  }
   if (!a.out.distortion.empty() && a.times.size() != 1)
     throw InputError("--distortion writes one frame: give a single --t value with it");
   if (!a.out.quiet)
@@ -160,8 +166,11 @@ void add_interp_command(CLI::App& app, int& exit_code) {
   cmd->add_option("source", args->source, "Source pose (.obj/.off triangles, planar or a 3D surface; .mesh tets)")
       ->required();
   cmd->add_option("target", args->target, "Target pose: same vertices and elements as SOURCE")->required();
-  cmd->add_option("--t", args->times, "Times in [0, 1], comma-separated (0 = source, 1 = target)")
+  cmd->add_option("--t", args->times, "Times in [0, 1], comma-separated (0 = source, 1 = target), each once")
       ->delimiter(',')
+      ->check(CLI::Validator(
+          [](std::string& s) { return s.find_first_not_of(" \t") == std::string::npos ? std::string("an empty time") : std::string(); },
+          "", "non-empty"))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output,
                   "Output prefix: frame t goes to PREFIX_<t>.<ext>, t printed with %g (0.25, 0.5, 1), ext from SOURCE")

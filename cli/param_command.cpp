@@ -1,4 +1,4 @@
-// strictmin param MESH -o OUT.obj [--measure arap|asap|fd] [--method ...] [--init tutte|lscm]
+// strictmin param MESH -o OUT.obj [--measure arap|asap|fd|qc|iso] [--method ...] [--init tutte|lscm]
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -47,9 +47,7 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
 
 int run_param(ParamArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_output_paths(a.out);
-  check_output_paths({{"--output", a.output}});
-  check_uv_output_path(a.output);
+  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir);
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);
@@ -65,6 +63,13 @@ int run_param(ParamArgs a) {
     options.init_only = true;
     a.solver.method = "l2";
   }
+  // param's own names beside the solver's, in the messages for unknown ones.
+  if (!parse_method(a.solver.method))
+    throw InputError("--method: unknown method '" + a.solver.method + "' (use tutte, lscm or one of: " + method_list() +
+                     ")");
+  if (const auto init = parse_method(a.solver.init);
+      !init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
+    throw InputError("unknown --init '" + a.solver.init + "' (use tutte, lscm, l2, lp, irls or linf)");
   options.solver = make_solver_options(a.solver, a.out);
   apply_local_global_options(a.lg, options.local_global);
   options.no_flips = a.lg.no_flips;
@@ -101,7 +106,7 @@ void add_param_command(CLI::App& app, int& exit_code) {
       "param",
       "Parametrize a disk-topology surface (one boundary loop) in the plane with a free boundary: the least "
       "ARAP / ASAP distortion in the chosen norm, written as the OBJ's vt coordinates.");
-  cmd->add_option("mesh", args->mesh, "Input surface (.obj/.off/.ply triangles, one boundary loop)");
+  cmd->add_option("mesh", args->mesh, "Input surface (.obj/.off triangles, one boundary loop)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, the map as vt, f v/vt");
   cmd->add_option("--measure", args->measure,
                   "arap or asap (local-global iterations around the method), fd (frames from the starting map), qc "
@@ -112,9 +117,11 @@ void add_param_command(CLI::App& app, int& exit_code) {
   add_solver_options(*cmd, args->solver);
   cmd->get_option("--method")
       ->description("tutte or lscm (the starting map itself), l2 (Liu et al. 2008 ARAP), linf (least maximum), "
-                    "relax / direct (strict minimizer), lp / irls (baselines)");
-  cmd->get_option("--init")->description(
-      "the starting map: tutte (default; bijective) or lscm; l2, lp, irls or linf: relax's start (default linf)");
+                    "relax / direct (strict minimizer), exact (fd only, small meshes), lp / irls (baselines)");
+  cmd->get_option("--init")
+      ->description(
+          "the starting map: tutte (default; bijective) or lscm; l2, lp, irls or linf: relax's start (default linf)")
+      ->default_str("tutte");
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
   cmd->callback([args, &exit_code] { exit_code = run_param(*args); });

@@ -4,6 +4,8 @@
 // strict minimizer must beat L2 ARAP's maximum.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -176,6 +178,40 @@ TEST(Param, SphericalCapLinfAndStrictBeatL2AndLscm) {
   EXPECT_NE(c.order, StrictOrder::Greater) << describe(c, "relax", "linf");
   std::printf("cap ARAP max: lscm %.4f  L2 %.4f  linf %.4f  relax %.4f\n", lscm_max, l2.measured.stats.max,
               linf.measured.stats.max, relax.measured.stats.max);
+}
+
+// ASAP is invariant under similarities, so its free-boundary minimizers include the map
+// shrunk to a point (distortion 0). Two boundary vertices are pinned at the start map's
+// positions (as for qc): the maps keep their size, and on a cap (not developable, but with
+// a conformal map to the plane) the distortion is small but not zero. Before, linf returned
+// a map of size 1e-8, "solved" at 4e-9.
+TEST(Param, AsapKeepsTheMapsSize) {
+  const Mesh cap = make_spherical_cap(8, 24, 1.2);
+  double rest_area = 0;
+  for (Eigen::Index f = 0; f < cap.F.rows(); ++f) {
+    const Eigen::Vector3d a = cap.V.row(cap.F(f, 0)).transpose(), b = cap.V.row(cap.F(f, 1)).transpose(),
+                          c = cap.V.row(cap.F(f, 2)).transpose();
+    rest_area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  for (Method m : {Method::L2, Method::Linf, Method::Relax}) {
+    ParamOptions o;
+    o.solver.method = m;
+    o.measure = Measure::Asap;
+    const ParamOutcome r = parametrize(cap, o);
+    EXPECT_TRUE(r.result.usable()) << method_name(m) << ": " << r.result.message;
+    double uv_area = 0;
+    for (Eigen::Index f = 0; f < cap.F.rows(); ++f) {
+      const Eigen::RowVector2d a = r.mapped.UV.row(r.mapped.FUV(f, 0)), b = r.mapped.UV.row(r.mapped.FUV(f, 1)),
+                               c = r.mapped.UV.row(r.mapped.FUV(f, 2));
+      uv_area += 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    }
+    EXPECT_GT(uv_area, 0.5 * rest_area) << method_name(m);
+    EXPECT_LT(uv_area, 2.0 * rest_area) << method_name(m);
+    EXPECT_GT(r.measured.stats.max, 1e-4) << method_name(m);
+    EXPECT_EQ(r.flips, 0) << method_name(m);
+    std::printf("cap ASAP %s: max %.5f, UV area / rest area %.3f\n", method_name(m).c_str(), r.measured.stats.max,
+                uv_area / rest_area);
+  }
 }
 
 TEST(Param, FdUsesFramesOfTheStartingMap) {

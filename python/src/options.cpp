@@ -28,6 +28,8 @@ int integer(const std::string& key, py::handle v) {
   try {
     x = v.cast<long long>();
   } catch (const py::cast_error&) {
+    // An int that does not fit (2**63) is out of range; anything else is not an integer.
+    if (py::isinstance<py::int_>(v)) throw InputError(key + ": " + std::string(py::str(v)) + " is out of range");
     throw py::type_error(key + " must be an integer, not " + std::string(py::str(v.get_type().attr("__name__"))));
   }
   if (x < INT_MIN || x > INT_MAX) throw InputError(key + ": " + std::to_string(x) + " is out of range");
@@ -56,6 +58,9 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "move_tolerance") s.relax.move_tolerance = real(key, v);
   else if (key == "accept_tolerance") s.relax.accept_tolerance = real(key, v);
   else if (key == "init") o.init = text(key, v);
+  else if (key == "relax_init") o.relax_init = text(key, v);
+  else if (key == "no_flips" && (task == Task::Deform || task == Task::Param)) o.no_flips = flag(key, v);
+  else if (key == "max_levels") s.direct.max_steps = integer(key, v);
   else if (key == "delta_k") s.direct.delta_k = real(key, v);
   else if (key == "k_min") s.direct.k_min = real(key, v);
   else if (key == "level_gap") s.direct.level_gap = real(key, v);
@@ -71,6 +76,7 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "lg_acceleration") o.local_global.acceleration_window = integer(key, v);
   else if (key == "lg_extrapolation") o.local_global.target_extrapolation = real(key, v);
   else if (key == "lg_warm_start") o.local_global.warm_start = flag(key, v);
+  else if (key == "lg_cold_start") o.local_global.warm_start = !flag(key, v);  // the flag's own name
   else if (key == "start" && task == Task::Deform) o.start = text(key, v);
   else if (key == "pin" && task == Task::Interp) {
     if (py::isinstance<py::str>(v)) {
@@ -113,12 +119,20 @@ TaskOptions parse_options(Task task, const std::string& function, const std::str
   const auto parsed = parse_method(m);
   if (!parsed) throw InputError("unknown method '" + method + "' (use one of: " + method_list() + ")");
   o.solver.method = *parsed;
-  std::string relax_init = o.init.empty() ? "linf" : o.init;
-  if (task == Task::Param && (relax_init == "tutte" || relax_init == "lscm")) relax_init = "linf";
+  // relax's start: relax_init, else init when it names a method (param's init may name the
+  // starting map instead), else linf.
+  std::string relax_init = !o.relax_init.empty() ? o.relax_init : o.init.empty() ? "linf" : o.init;
+  if (task == Task::Param && o.relax_init.empty() && (relax_init == "tutte" || relax_init == "lscm"))
+    relax_init = "linf";
   const auto init = parse_method(relax_init);
-  if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
-    throw InputError("unknown init '" + o.init + "' (use " +
-                     (task == Task::Param ? "tutte, lscm, " : "") + "l2, lp, irls or linf)");
+  if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact) {
+    if (!o.relax_init.empty())
+      throw InputError("unknown relax_init '" + o.relax_init + "' (use l2, lp, irls or linf)");
+    throw InputError("unknown init '" + o.init + "' (use " + (task == Task::Param ? "tutte, lscm, " : "") +
+                     "l2, lp, irls or linf)");
+  }
+  if (task == Task::Param && !o.init.empty() && o.init != "tutte" && o.init != "lscm" && !o.relax_init.empty())
+    throw InputError("init names the starting map (tutte or lscm) when relax_init is given, not '" + o.init + "'");
   o.solver.relax_init = *init;
   if (o.start != "l2" && o.start != "rest") throw InputError("unknown start '" + o.start + "' (use l2 or rest)");
   return o;

@@ -16,6 +16,8 @@ struct TaskOptions {
   SolverOptions solver;
   LocalGlobalOptions local_global;
   std::string init;           // param: tutte (default) or lscm; relax: l2, lp, irls, linf
+  std::string relax_init;     // relax's start (l2, lp, irls, linf) beside param's init
+  bool no_flips = false;      // deform, param: as --no-flips
   std::string start = "l2";   // deform arap / asap: l2 or rest
   int pin = -1;               // interp: -1 the centroid, else a vertex
   int threads = 0;            // 0: all cores

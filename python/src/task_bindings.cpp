@@ -101,6 +101,7 @@ py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::Vect
   options.solver = o.solver;
   options.local_global = o.local_global;
   options.start = o.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
+  options.no_flips = o.no_flips;
   std::optional<DeformOutcome> d;
   run_released([&] {
     const auto threads = limit_threads(o.threads);
@@ -132,6 +133,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   wire_progress(o, callback_or_null(progress));
   options.solver = o.solver;
   options.local_global = o.local_global;
+  options.no_flips = o.no_flips;
   std::optional<ParamOutcome> p;
   run_released([&] {
     const auto threads = limit_threads(o.threads);

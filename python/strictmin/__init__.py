@@ -174,11 +174,6 @@ def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, v
     irls, linf; default linf). Returns a Result with ``uv``."""
     V = _vertices(V)
     F = _faces(F)
-    if "relax_init" in options:
-        relax_init = options.pop("relax_init")
-        if init not in ("tutte", None):
-            raise ValueError("give relax's start as relax_init and the starting map as init, not both as init")
-        init = relax_init
     if init is not None:
         options["init"] = init
     return Result(_strictmin.param(V, F, method, measure, options, _progress(progress, verbose)))
@@ -249,6 +244,8 @@ def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **
     V = _vertices(V)
     F = _faces(F)
     V_target = _vertices(V_target, "V_target")
+    if isinstance(t, (str, bytes)):
+        raise TypeError(f"t must be a number or a sequence of numbers in [0, 1], not a string ({t!r})")
     single = isinstance(t, numbers.Real) or (isinstance(t, np.ndarray) and t.ndim == 0)
     times = [float(t)] if single else [float(x) for x in t]
     results = [Result(r) for r in _strictmin.interp(V, F, V_target, times, method, options,

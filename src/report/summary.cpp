@@ -28,7 +28,10 @@ void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
 void add_status_summary(nlohmann::json& s, const Result& r) {
   s["status"] = status_name(r.status);
   s["usable"] = r.usable();
-  s["stop_reason"] = r.message;
+  // Always a reason (docs/formats.md); a solver that leaves none is named by its status.
+  s["stop_reason"] = !r.message.empty()                ? r.message
+                     : r.status == SolveStatus::Solved ? "solved: the method's own criterion was met"
+                                                       : status_name(r.status) + " (no further reason given)";
   if (!r.message.empty()) s["message"] = r.message;
 }
 
@@ -129,6 +132,10 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
   add_status_summary(s, p.result);
   if (!options.init_only) {
     add_solver_summary(s, options.solver, p.result);
+    // relax's own `init` (the method it starts from) would overwrite the starting map's: here
+    // `init` stays the starting map (tutte / lscm) and relax's goes to `relax_init`.
+    if (options.solver.method == Method::Relax) s["relax_init"] = method_name(options.solver.relax_init);
+    s["init"] = init_name(options.init);
     if (is_conformal_measure(options.measure))
       add_conformal_summary(s, options.solver, p.conformal);
     else if (options.measure != Measure::FieldDeviation)

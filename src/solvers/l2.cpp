@@ -184,6 +184,8 @@ Result solve_l2(const Problem& p, const L2Options& options) {
   const L2Solver solver(p, options);
   r.status = solver.status();
   r.message = solver.message();
+  if (r.message.empty())
+    r.message = "least squares: one factorization and solve (" + std::to_string(p.num_free()) + " free vertices)";
   r.positions = solver.solve(p);
   r.distortion = field_deviation(p, r.positions);
   r.iterations = 1;

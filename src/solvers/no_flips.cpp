@@ -50,7 +50,8 @@ void cut_back_result(const Problem& problem, const Eigen::MatrixXd& start, Resul
   if (fraction == 1) return;
   result.distortion = field_deviation(problem, result.positions);
   result.status = worse_status(result.status, SolveStatus::Stalled);
-  result.message += "; cut back to " + std::to_string(fraction) + " of the step from the start to add no flip";
+  result.message += std::string(result.message.empty() ? "" : "; ") + "cut back to " + std::to_string(fraction) +
+                    " of the step from the start to add no flip";
 }
 
 }  // namespace strictmin

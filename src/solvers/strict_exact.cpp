@@ -195,6 +195,9 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
       break;
     }
   }
+  if (out.status == SolveStatus::Solved && out.message.empty())
+    out.message = "every level's essential elements found: " + std::to_string(out.iterations) + " levels, " +
+                  std::to_string(solves) + " solves";
   if (short_solves > 0) {
     const std::string note = std::to_string(short_solves) + " of " + std::to_string(solves) +
                              " solves stopped short of their gap but within tolerance / 10 and decided their level or test";

@@ -31,9 +31,10 @@ Result run_conformal_method(const Problem& problem, const Eigen::MatrixXd& start
       return solve_conformal_direct(problem, start, c, options.direct, stats);
     default:
       throw InputError("--measure " + measure_name(measure) + " supports --method l2 (the starting map), linf and " +
-                       "direct; '" + method_name(options.method) +
-                       "' is not available for it (relax has no exact 1-ring step for a measure that is convex "
-                       "only for fixed frames)");
+                       "direct; '" + method_name(options.method) + "' is not available for it" +
+                       (options.method == Method::Relax
+                            ? " (relax has no exact 1-ring step for a measure that is convex only for fixed frames)"
+                            : ""));
   }
 }
 

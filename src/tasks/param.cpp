@@ -35,9 +35,11 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   Problem& p = out.problem;
   p.positions = out.initial;
   std::vector<Handle> pins{Handle{out.boundary.front(), out.initial.row(out.boundary.front()).transpose()}};
-  // qc is invariant under similarities: a second pin (the boundary vertex halfway round)
-  // fixes rotation and scale as well, so that the bisection's slack cannot grow by scaling.
-  if (m == Measure::Quasiconformal && out.boundary.size() > 2) {
+  // qc and asap are invariant under similarities: a second pin (the boundary vertex halfway
+  // round) fixes rotation and scale as well. Without it asap's minimizers shrink the map to a
+  // point (distortion 0: every J is the zero similarity), and qc's bisection slack could grow
+  // by scaling.
+  if ((m == Measure::Quasiconformal || m == Measure::Asap) && out.boundary.size() > 2) {
     const int v = out.boundary[out.boundary.size() / 2];
     pins.push_back(Handle{v, out.initial.row(v).transpose()});
   }
@@ -50,6 +52,8 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   if (options.init_only) {
     out.result.positions = out.initial;
     out.result.time_s = out.init_time_s;
+    out.result.message = options.init == ParamInit::Tutte ? "the starting map itself: Tutte's embedding (boundary on a circle)"
+                                                          : "the starting map itself: LSCM (two boundary vertices pinned)";
     if (m == Measure::FieldDeviation) local_step(p, out.initial, lg);
   } else if (conformal) {
     out.result = run_conformal_method(p, out.initial, m, options.solver, &out.conformal);

@@ -135,6 +135,36 @@ class Deform(unittest.TestCase):
                 self.assertIn("error", p.stderr)
                 self.assertIn(needle, p.stderr)
 
+    def test_outputs_that_would_overwrite_each_other_are_refused_first(self):
+        # Two flags naming one file (the JSON replaced the mesh), and a --report that is a file
+        # (the run wrote its other outputs and then failed): exit 1 before any work, nothing written.
+        out = os.path.join(self.dir, "o.obj")
+        p = run("deform", "--example", "square", "-o", out, "--summary", out, check_code=1)
+        self.assertIn("--output writes the same file", p.stderr)
+        p = run("deform", "--example", "square", "-o", out, "--distortion", os.path.join(self.dir, ".", "o.obj"),
+                check_code=1)
+        self.assertIn("--distortion", p.stderr)
+        afile = write(os.path.join(self.dir, "afile"), "x")
+        summary = os.path.join(self.dir, "s.json")
+        p = run("deform", "--example", "square", "-o", out, "--summary", summary, "--report", afile, check_code=1)
+        self.assertIn("--report", p.stderr)
+        self.assertIn("is a file, not a folder", p.stderr)
+        self.assertFalse(os.path.exists(out) or os.path.exists(summary))
+
+    def test_every_solve_says_why_it_stopped(self):
+        # stop_reason is never empty (it was for l2, exact and param's starting maps).
+        for args in (["deform", "--example", "square", "--method", "l2"],
+                     ["deform", "--example", "square", "--method", "exact"]):
+            s = json.loads(run(*args, "--summary", "-", "--quiet", check_code=0).stdout)
+            self.assertTrue(s["stop_reason"], args)
+            self.assertEqual(s["message"], s["stop_reason"])
+
+    def test_exact_with_arap_is_refused(self):
+        out = os.path.join(self.dir, "x.obj")
+        p = run("deform", "--example", "bar", "--method", "exact", "--measure", "arap", "-o", out, check_code=1)
+        self.assertIn("field deviation only", p.stderr)
+        self.assertFalse(os.path.exists(out))
+
     def test_failed_run_leaves_no_output(self):
         out = os.path.join(self.dir, "never.obj")
         run("deform", "--example", "square", "--method", "magic", "-o", out)

@@ -102,9 +102,30 @@ class Interp(unittest.TestCase):
 
     def test_bad_options(self):
         self.assertIn("outside [0, 1]", run("interp", self.src, self.dst, "--t", "1.5", check_code=1).stderr)
+        # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
+        self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
+        self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)
         self.assertIn("--pin", run("interp", self.src, self.dst, "--pin", "middle", check_code=1).stderr)
         self.assertIn("single --t", run("interp", self.src, self.dst, "--t", "0.2,0.4", "--distortion",
                                         os.path.join(self.dir, "d.txt"), check_code=1).stderr)
+
+    def test_exact_frames_of_a_surface_are_solved(self):
+        # t = 0 and t = 1 reproduce the poses: local-global stops at once. On lion's surface the
+        # rest frames leave about 1e-11 (6e-12 here), which the zero test at 1e-12 missed: both
+        # frames ran to the 100-step cap chasing round-off (max-iterations, exit 2).
+        src = os.path.join(DATA, "interp", "lion_reference.obj")
+        dst = os.path.join(DATA, "interp", "lion_05.obj")
+        if not (os.path.exists(src) and os.path.exists(dst)):
+            self.skipTest("no shared data")
+        summary = os.path.join(self.dir, "lion.json")
+        run("interp", src, dst, "--t", "0,1", "--method", "l2", "-o", os.path.join(self.dir, "lion"), "--summary",
+            summary, "--quiet", check_code=0)
+        with open(summary) as f:
+            frames = json.load(f)["frames"]
+        for frame in frames:
+            self.assertEqual(frame["status"], "solved")
+            self.assertLess(frame["max_distortion"], 1e-10)
+            self.assertIn("zero to rounding", frame["stop_reason"])
 
     def test_shared_tet_bar(self):
         rest = os.path.join(DATA, "interp", "tetbar_rest.mesh")

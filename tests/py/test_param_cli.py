@@ -80,6 +80,12 @@ class Param(unittest.TestCase):
                            check_code=0).stdout)
         self.assertEqual(s["init"], "lscm")
         self.assertIn("local_global_iterations", s)
+        # relax: init stays the starting map, relax's own start is relax_init (it overwrote init).
+        s = json.loads(run("param", self.cap, "--init", "lscm", "--method", "relax", "--sweeps", "2", "--summary", "-",
+                           "--quiet", check_code=0).stdout)
+        self.assertEqual((s["init"], s["relax_init"]), ("lscm", "linf"))
+        s = json.loads(run("param", self.cap, "--method", "tutte", "--summary", "-", "--quiet", check_code=0).stdout)
+        self.assertIn("Tutte", s["stop_reason"])
 
     def test_closed_mesh_is_rejected(self):
         p = run("param", self.path("tet.obj", TETRA), "-o", os.path.join(self.dir, "x.obj"), check_code=1)
@@ -95,6 +101,10 @@ class Param(unittest.TestCase):
     def test_unknown_measure_and_method(self):
         self.assertIn("unknown measure", run("param", self.cap, "--measure", "bogus", check_code=1).stderr)
         self.assertIn("unknown method", run("param", self.cap, "--method", "bogus", check_code=1).stderr)
+        # param's own names are in the lists; --help shows param's default start.
+        self.assertIn("use tutte, lscm", run("param", self.cap, "--method", "bogus", check_code=1).stderr)
+        self.assertIn("use tutte, lscm, l2, lp, irls or linf", run("param", self.cap, "--init", "x", check_code=1).stderr)
+        self.assertIn("--init TEXT=tutte", run("param", "--help", check_code=0).stdout)
 
     def test_report(self):
         rep = os.path.join(self.dir, "rep")

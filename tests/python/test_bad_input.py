@@ -126,6 +126,14 @@ def test_options(square):
         strictmin.deform(V, F, idx, pos, sweeps=2.5)
     with pytest.raises(TypeError, match="progress must be callable"):
         strictmin.deform(V, F, idx, pos, progress=3)
+    # An int too large for the option is out of range (ValueError), not "not an integer".
+    with pytest.raises(ValueError, match="^sweeps: 9223372036854775808 is out of range"):
+        strictmin.deform(V, F, idx, pos, sweeps=2**63)
+    # A string t is not iterated character by character.
+    with pytest.raises(TypeError, match="t must be a number or a sequence"):
+        strictmin.interp(V, F, V * 2, "0.5")
+    with pytest.raises(ValueError, match="unknown relax_init 'direct'"):
+        strictmin.param(np.column_stack([V, 0 * V[:, 0]]), F, method="relax", relax_init="direct")
 
 
 def test_tasks(square):

@@ -268,6 +268,23 @@ def test_local_global_step_options():
     assert abs(fast.max_distortion - plain.max_distortion) <= 1e-6
     with pytest.raises(ValueError, match="target_extrapolation"):
         strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_extrapolation=1.5)
+    # The command line's flag names work as keywords too: lg_cold_start (= not lg_warm_start).
+    cold = strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_tolerance=1e-8, lg_iterations=300,
+                            lg_extrapolation=0.0, lg_cold_start=True, lg_acceleration=0)
+    assert cold.max_distortion == plain.max_distortion
+
+
+def test_cli_flags_as_keywords():
+    # no_flips, max_levels and relax_init beside init (param), as the command line's flags.
+    V, F = saddle(6)
+    capped = strictmin.param(V, F, method="direct", measure="fd", max_levels=2)
+    assert capped.status == "max-iterations" and capped.iterations == 2
+    kept = strictmin.param(V, F, method="linf", measure="arap", no_flips=True)
+    assert kept.summary["no_flips"] is True and kept.summary["flips_added"] == 0
+    r = strictmin.param(V, F, method="relax", init="lscm", relax_init="l2", sweeps=3)
+    assert r.summary["init"] == "lscm" and r.summary["relax_init"] == "l2"
+    default = strictmin.param(V, F, method="relax", sweeps=3)
+    assert default.summary["init"] == "tutte" and default.summary["relax_init"] == "linf"
 
 
 def test_blas_kernels_reports_the_kernels_and_a_better_set_only_after_the_generic_fallback():
