@@ -49,6 +49,19 @@ int main(int argc, char** argv) {
   strictmin::cli::add_gparam_command(app, exit_code);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RequiredError& e) {
+    // "A subcommand is required" also answers a mistyped command or option before any command:
+    // name what was given instead.
+    if (argc > 1 && app.get_subcommands().empty()) {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+      const std::string given = argv[1];
+      std::cerr << "strictmin: error: " << (given.rfind("-", 0) == 0 ? "unknown option '" : "unknown command '")
+                << given << "' (commands: " << names << "; strictmin --help)" << std::endl;
+      return strictmin::cli::kExitBadInput;
+    }
+    const int code = app.exit(e);
+    return code == 0 ? 0 : strictmin::cli::kExitBadInput;
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : strictmin::cli::kExitBadInput;

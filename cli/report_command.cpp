@@ -136,6 +136,9 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   };
   r.input = text("input");
   const std::string mapped_path = resolve(text("map").empty() ? text("output") : text("map"), file);
+  if (mapped_path.empty() && text("task") == "interp")
+    throw InputError(file + ": an interp summary (several frames) is not one result; its frames are in interp's own "
+                     "report (strictmin interp ... --report DIR)");
   if (mapped_path.empty())
     throw InputError(file + ": the summary names no output mesh (run the task with -o OUT.obj, or .mesh for tets)");
   // The rest mesh: a built-in example, or the input file.

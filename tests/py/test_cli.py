@@ -159,6 +159,11 @@ class Deform(unittest.TestCase):
             self.assertTrue(s["stop_reason"], args)
             self.assertEqual(s["message"], s["stop_reason"])
 
+    def test_mistyped_command_or_option_is_named(self):
+        # (CLI11 said "A subcommand is required" to both.)
+        self.assertIn("unknown command 'defrom'", run("defrom", "--example", "square", check_code=1).stderr)
+        self.assertIn("unknown option '--bogus'", run("--bogus", check_code=1).stderr)
+
     def test_exact_with_arap_is_refused(self):
         out = os.path.join(self.dir, "x.obj")
         p = run("deform", "--example", "bar", "--method", "exact", "--measure", "arap", "-o", out, check_code=1)

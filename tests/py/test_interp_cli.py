@@ -109,6 +109,13 @@ class Interp(unittest.TestCase):
         self.assertIn("single --t", run("interp", self.src, self.dst, "--t", "0.2,0.4", "--distortion",
                                         os.path.join(self.dir, "d.txt"), check_code=1).stderr)
 
+    def test_report_command_points_to_interps_own_report(self):
+        summary = os.path.join(self.dir, "ip.json")
+        run("interp", self.src, self.dst, "--t", "0.5", "--method", "l2", "-o", os.path.join(self.dir, "ip"), "--summary",
+            summary, "--quiet", check_code=0)
+        p = run("report", os.path.join(self.dir, "R"), summary, check_code=1)
+        self.assertIn("interp ... --report DIR", p.stderr)
+
     def test_exact_frames_of_a_surface_are_solved(self):
         # t = 0 and t = 1 reproduce the poses: local-global stops at once. On lion's surface the
         # rest frames leave about 1e-11 (6e-12 here), which the zero test at 1e-12 missed: both
