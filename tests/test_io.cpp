@@ -1,5 +1,6 @@
 // Mesh file reading (OBJ, OFF, MEDIT), writing (OBJ, OFF, MEDIT, PLY) and atomic writes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <Eigen/Geometry>
@@ -9,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "expect_input_error.h"
 #include "strictmin/io/atomic_file.h"
@@ -582,6 +584,28 @@ TEST_F(TempDir, AtomicWriteReplacesTheTarget) {
   write_file_atomically(path("t.txt"), [](std::ostream& os) { os << "new"; });
   EXPECT_EQ(slurp(path("t.txt")), "new");
   EXPECT_EQ(listing(), std::vector<std::string>{"t.txt"});
+}
+
+// Writing to /dev/null (a common way to drop an output) must leave the device in place: the
+// rename of the temporary replaced it with a regular file (as root), and every later
+// `> /dev/null` on the machine filled that file. A FIFO is written in place too; a symbolic
+// link keeps being a link, the file it names gets the content.
+TEST_F(TempDir, AtomicWriteKeepsDevicesFifosAndLinks) {
+  write_file_atomically("/dev/null", [](std::ostream& os) { os << "dropped"; });
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  const std::string fifo = path("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] { received = slurp(fifo); });
+  write_file_atomically(fifo, [](std::ostream& os) { os << "through the pipe"; });
+  reader.join();
+  EXPECT_EQ(received, "through the pipe");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  spit(path("real.txt"), "old");
+  fs::create_symlink(path("real.txt"), path("link.txt"));
+  write_file_atomically(path("link.txt"), [](std::ostream& os) { os << "new"; });
+  EXPECT_TRUE(fs::is_symlink(path("link.txt")));
+  EXPECT_EQ(slurp(path("real.txt")), "new");
 }
 
 TEST_F(TempDir, WriteOntoADirectoryFailsCleanly) {

@@ -40,7 +40,32 @@ std::string create_temporary_next_to(const std::string& target) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+namespace {
+
+// Writes straight into an existing file that is not a regular one (a device or a FIFO).
+void write_in_place(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  std::ofstream stream(path, std::ios::binary);
+  if (!stream) throw InputError("cannot write " + path + ": " + errno_text(errno, "cannot open it"));
+  write(stream);
+  stream.flush();
+  if (!stream) throw InputError("cannot write " + path + ": " + errno_text(errno, "write error"));
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& given, const std::function<void(std::ostream&)>& write) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::string path = given;
+  if (fs::is_symlink(given, ec)) {  // replace the file the link names, not the link
+    const fs::path target = fs::canonical(given, ec);
+    if (!ec) path = target.string();
+  }
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
+    if (fs::is_directory(path, ec)) throw InputError("cannot write " + given + ": it is a directory");
+    write_in_place(path, write);
+    return;
+  }
   const std::string temp = create_temporary_next_to(path);
   auto give_up = [&](const std::string& reason) {
     std::remove(temp.c_str());
