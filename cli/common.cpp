@@ -154,6 +154,13 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
   all.push_back({"--summary", out.summary});
   all.push_back({"--distortion", out.distortion});
   check_output_paths(all);
+  for (const auto& [flag, path] : task_outputs) {  // a mesh output's format, known before the solve
+    if (flag != "--output" || path.empty()) continue;
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".mesh")
+      throw InputError("--output " + path + ": unknown mesh format '" + ext + "' (use .obj, .off, .ply or .mesh)");
+  }
   std::vector<std::pair<fs::path, std::string>> seen;
   for (const auto& [flag, path] : all) {
     if (path.empty() || path == "-") continue;

@@ -64,8 +64,12 @@ int run_eval(const EvalArgs& a) {
   const Mesh rest = read_mesh(a.rest, &warnings);
   Mesh mapped;
   if (a.mapped.empty()) {
-    if (!rest.has_uv())
-      throw InputError(a.rest + ": no map to evaluate: give a MAPPED mesh, or an OBJ with texture coordinates (vt)");
+    if (!rest.has_uv()) {
+      std::string why = a.rest + ": no map to evaluate: give a MAPPED mesh, or an OBJ with texture coordinates (vt)";
+      for (const auto& w : warnings)  // the reader's reason when some faces have vt and some not
+        if (w.find("texture coordinates ignored") != std::string::npos) why += " (" + w + ")";
+      throw InputError(why);
+    }
     mapped = rest;
   } else {
     MeshReadOptions image;
@@ -96,7 +100,11 @@ int run_eval(const EvalArgs& a) {
   s["elements"] = rest.num_elements();
   s["vertices"] = rest.num_vertices();
   add_distortion_summary(s, d.stats);
+  // Nothing is solved: the keys every summary has, for readers that expect them.
   s["status"] = "solved";
+  s["usable"] = d.distortion.size() > 0;
+  s["stop_reason"] = "evaluated the given map (no solve)";
+  s["distortion_file"] = a.out.distortion;
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.distortion);
   if (!a.report.dir.empty())

@@ -57,6 +57,10 @@ Eigen::VectorXd read_distortion_file(const std::string& path, int expected) {
     const double v = std::strtod(token.c_str(), &end);
     if (end == token.c_str() || *end != '\0')
       throw InputError(located(path, static_cast<long>(values.size()) + 1, "not a number: '" + token + "'"));
+    // A distortion is >= 0 or +inf (a flipped element under qc / iso); NaN or a negative value
+    // is not one, and would make the verdicts meaningless.
+    if (std::isnan(v) || v < 0)
+      throw InputError(located(path, static_cast<long>(values.size()) + 1, "not a distortion (>= 0 or inf): '" + token + "'"));
     values.push_back(v);
   }
   if (static_cast<int>(values.size()) != expected)
@@ -72,6 +76,9 @@ Eigen::MatrixXd read_positions(const std::string& path) {
   if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".obj" && ext != ".off" && ext != ".mesh")
+    throw InputError(path + ": the report reads results written as .obj, .off or .mesh ('" + ext +
+                     "' is written by the tasks but not read back; run the task with -o OUT.obj)");
   std::vector<Eigen::Vector3d> points;
   std::string line;
   if (ext == ".obj") {
@@ -91,17 +98,21 @@ Eigen::MatrixXd read_positions(const std::string& path) {
       for (std::string t; ls >> t;) tokens.push_back(t);
     }
     std::size_t i = 0, n = 0, per = 3;
-    if (ext == ".mesh") {
-      while (i < tokens.size() && tokens[i] != "Vertices") ++i;
-      if (i + 1 < tokens.size()) n = std::stoul(tokens[i + 1]), i += 2;
-      per = 4;  // x y z ref
-    } else if (ext == ".off" && !tokens.empty()) {
-      i = 1;
-      if (i < tokens.size()) n = std::stoul(tokens[i]);
-      i += 3;
+    try {
+      if (ext == ".mesh") {
+        while (i < tokens.size() && tokens[i] != "Vertices") ++i;
+        if (i + 1 < tokens.size()) n = std::stoul(tokens[i + 1]), i += 2;
+        per = 4;  // x y z ref
+      } else if (ext == ".off" && !tokens.empty()) {
+        i = 1;
+        if (i < tokens.size()) n = std::stoul(tokens[i]);
+        i += 3;
+      }
+      for (std::size_t k = 0; k < n && i + 3 <= tokens.size(); ++k, i += per)
+        points.emplace_back(std::stod(tokens[i]), std::stod(tokens[i + 1]), std::stod(tokens[i + 2]));
+    } catch (const std::logic_error&) {  // std::stod / std::stoul: not a number, or out of range
+      throw InputError(path + ": a vertex count or coordinate is not a number");
     }
-    for (std::size_t k = 0; k < n && i + 3 <= tokens.size(); ++k, i += per)
-      points.emplace_back(std::stod(tokens[i]), std::stod(tokens[i + 1]), std::stod(tokens[i + 2]));
   }
   if (points.empty()) throw InputError(path + ": no vertices found");
   Eigen::MatrixXd V(points.size(), 3);

@@ -1,5 +1,7 @@
 #include "report_output.h"
 
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -119,7 +121,20 @@ std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary
 std::string file_url(const std::string& path) {
   std::error_code ec;
   const auto abs = std::filesystem::absolute(path, ec);
-  return "file://" + (ec ? path : abs.lexically_normal().string());
+  const std::string plain = ec ? path : abs.lexically_normal().string();
+  // Percent-encoded (RFC 3986): a '#', '%', '?' or space in a folder name would otherwise cut
+  // the address short or change it in a browser.
+  std::string url = "file://";
+  for (const unsigned char ch : plain) {
+    if (std::isalnum(ch) || ch == '/' || ch == '-' || ch == '_' || ch == '.' || ch == '~') {
+      url += static_cast<char>(ch);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", ch);
+      url += hex;
+    }
+  }
+  return url;
 }
 
 std::string measure_description(const std::string& m) {

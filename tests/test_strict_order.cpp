@@ -66,6 +66,32 @@ TEST(StrictOrder, Levels) {
   EXPECT_DOUBLE_EQ(levels[2].area, 1.0);
 }
 
+// Infinite maxima (a flipped element under qc / iso) tie with each other: inf - inf is NaN,
+// which made each of two identical vectors "less distorting" than the other.
+TEST(StrictOrder, InfiniteValuesTie) {
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(3);
+  const Eigen::VectorXd a = vec({INFINITY, 0.5, 0.1});
+  EXPECT_EQ(compare_strict(a, a, w).order, StrictOrder::Equivalent);
+  EXPECT_EQ(compare_strict(a, vec({INFINITY, 0.4, 0.1}), w).order, StrictOrder::Greater);
+  EXPECT_EQ(compare_strict(vec({INFINITY, INFINITY, 0.1}), a, w).order, StrictOrder::Greater);
+  const StrictComparison c = compare_strict(vec({0.3, 0.1, 0.0}), a, w);
+  EXPECT_EQ(c.order, StrictOrder::Less);
+  EXPECT_TRUE(c.by_value);
+}
+
+// A verdict says what decided it: values 1.1e-6 apart at a value tolerance of 1e-6 differ
+// (by_value), and are not described as "both reach" one maximum.
+TEST(StrictOrder, DecidedByValueOrByArea) {
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(2);
+  const StrictComparison values = compare_strict(vec({1.0824, 0.1}), vec({1.0824011, 0.1}), w, 1e-6);
+  EXPECT_EQ(values.order, StrictOrder::Less);
+  EXPECT_TRUE(values.by_value);
+  const StrictComparison areas = compare_strict(vec({1.0, 0.1}), vec({1.0, 1.0}), w, 1e-6);
+  EXPECT_EQ(areas.order, StrictOrder::Less);
+  EXPECT_FALSE(areas.by_value);
+  EXPECT_NE(describe(areas, "a", "b").find("covers area"), std::string::npos);
+}
+
 TEST(StrictOrder, Describe) {
   const Eigen::VectorXd w = Eigen::VectorXd::Ones(2);
   const auto c = compare_strict(vec({0.4, 0.1}), vec({0.5, 0.0}), w);

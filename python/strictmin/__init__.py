@@ -9,6 +9,7 @@ See docs/python.md for every function, keyword and the result object.
 """
 
 import numbers
+import os
 import sys
 import warnings
 
@@ -141,6 +142,11 @@ def write_mesh(path, V, F, uv=None, quality=None):
     (with quality: a per-face `quality` property MeshLab and ParaView colour)."""
     V = _vertices(V)
     F = _faces(F)
+    ext = os.path.splitext(str(path))[1].lower()
+    if uv is not None and ext != ".obj":
+        raise ValueError(f"uv is written as an OBJ's vt; {ext or 'a file without extension'} cannot hold it")
+    if quality is not None and ext != ".ply":
+        raise ValueError(f"quality is written as a PLY's per-face property; {ext or 'a file without extension'} cannot hold it")
     if uv is not None:
         uv = _vertices(uv, "uv")
     if quality is not None:
@@ -278,4 +284,7 @@ def compare(d1, d2, weights=None, value_tolerance=1e-6, area_tolerance=1e-9):
     d1 = np.ascontiguousarray(d1, dtype=np.float64).reshape(-1)
     d2 = np.ascontiguousarray(d2, dtype=np.float64).reshape(-1)
     w = np.ones_like(d1) if weights is None else np.ascontiguousarray(weights, dtype=np.float64).reshape(-1)
-    return Comparison(*_strictmin.compare(d1, d2, w, float(value_tolerance), float(area_tolerance)))
+    value_tolerance, area_tolerance = float(value_tolerance), float(area_tolerance)
+    if not (value_tolerance >= 0 and area_tolerance >= 0):  # also refuses nan
+        raise ValueError(f"value_tolerance and area_tolerance must be >= 0, got {value_tolerance} and {area_tolerance}")
+    return Comparison(*_strictmin.compare(d1, d2, w, value_tolerance, area_tolerance))

@@ -53,8 +53,10 @@ StrictComparison compare_strict(const Eigen::VectorXd& a, const Eigen::VectorXd&
     c.value_a = za;
     c.value_b = zb;
     c.level = level;
-    if (!(std::abs(za - zb) <= value_tolerance)) {
+    // Equal values tie (both infinite too: inf - inf is NaN, which ranked inf against inf).
+    if (!(za == zb || std::abs(za - zb) <= value_tolerance)) {
       c.order = za < zb ? StrictOrder::Less : StrictOrder::Greater;
+      c.by_value = true;
       c.area_a = ia < oa.size() ? w(oa[ia]) : 0.0;
       c.area_b = ib < ob.size() ? w(ob[ib]) : 0.0;
       return c;
@@ -78,7 +80,7 @@ std::string describe(const StrictComparison& c, const std::string& name_a, const
   }
   const bool less = c.order == StrictOrder::Less;
   s << (less ? name_a : name_b) << " is less distorting than " << (less ? name_b : name_a);
-  if (c.value_a != c.value_b)
+  if (c.by_value)
     s << ": at level " << c.level << " its distortion is " << (less ? c.value_a : c.value_b) << " against "
       << (less ? c.value_b : c.value_a);
   else

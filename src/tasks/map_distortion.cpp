@@ -18,6 +18,14 @@ MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Me
   const Problem p = make_problem(rest);
   const int c = p.corners(), E = p.num_elements();
   const bool surface_to_3d = p.domain_dim == 2 && images.cols() == 3 && !rest.is_planar();
+  // A parametrization of a surface in 3D: each triangle's J is taken in the triangle's own
+  // frame, whose turn in its plane is arbitrary, so J - I depends on it. The field deviation
+  // of a parametrization is against its target frames (gparam's field, param's starting map),
+  // which a map alone does not carry.
+  const bool parametrization = p.domain_dim == 2 && images.cols() == 2 && !rest.is_planar();
+  if (parametrization && measure == Measure::FieldDeviation)
+    throw InputError("fd of a parametrization needs its target frames (gparam's field, param's starting map), which a "
+                     "map alone does not carry; evaluate it with arap, asap, qc or iso");
   if (!surface_to_3d && images.cols() != p.image_dim)
     throw InputError("the map has " + std::to_string(images.cols()) + " coordinates per vertex, the rest mesh needs " +
                      std::to_string(p.image_dim));
@@ -52,7 +60,8 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
                      std::to_string(mapped.F.cols()) + " corners, " + rest_name + " has " +
                      std::to_string(rest.num_elements()) + " of " + std::to_string(rest.F.cols()) +
                      ": a map needs the same connectivity");
-  if (mapped.has_uv()) return map_distortion(rest, corner_images(mapped.FUV, mapped.UV), measure);
+  // The same elements on the same vertices, a UV-mapped OBJ too (its f v/vt: shuffled faces
+  // would pair each rest triangle with another's texture coordinates).
   if (rest.num_vertices() != mapped.num_vertices())
     throw InputError(mapped_name + " has " + std::to_string(mapped.num_vertices()) + " vertices, " + rest_name +
                      " has " + std::to_string(rest.num_vertices()) + ": a map needs the same connectivity");
@@ -61,6 +70,10 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
       if (rest.F(e, j) != mapped.F(e, j))
         throw InputError("element " + std::to_string(e) + " (0-based) has different vertices in " + rest_name + " and " +
                          mapped_name + ": a map needs the same connectivity");
+  if (mapped.has_uv()) return map_distortion(rest, corner_images(mapped.FUV, mapped.UV), measure);
+  if (rest.element_type() == ElementType::Triangle && rest.is_planar() && mapped.V.cols() == 3 && !mapped.is_planar())
+    throw InputError(mapped_name + " is not planar, while " + rest_name +
+                     " is: a planar rest is evaluated against a planar map (a flat sheet bent into 3D is not supported)");
   Eigen::MatrixXd X = mapped.V;
   const bool rest_planar = rest.element_type() == ElementType::Triangle && rest.is_planar();
   if (rest_planar && mapped.V.cols() == 3 && mapped.is_planar()) X = to_planar(mapped).V;

@@ -164,6 +164,16 @@ class Deform(unittest.TestCase):
         self.assertIn("unknown command 'defrom'", run("defrom", "--example", "square", check_code=1).stderr)
         self.assertIn("unknown option '--bogus'", run("--bogus", check_code=1).stderr)
 
+    def test_unknown_output_format_is_refused_before_the_solve(self):
+        p = run("deform", "--example", "square", "-o", os.path.join(self.dir, "x.stl"), check_code=1)
+        self.assertIn("unknown mesh format '.stl'", p.stderr)
+        self.assertNotIn("deform:", p.stderr)  # no progress line: nothing was solved
+
+    def test_report_address_is_percent_encoded(self):
+        folder = os.path.join(self.dir, "R x#y%")
+        p = run("deform", "--example", "square", "--method", "l2", "--report", folder, check_code=0)
+        self.assertIn("R%20x%23y%25/index.html", p.stderr)
+
     def test_exact_with_arap_is_refused(self):
         out = os.path.join(self.dir, "x.obj")
         p = run("deform", "--example", "bar", "--method", "exact", "--measure", "arap", "-o", out, check_code=1)
@@ -212,6 +222,22 @@ class Eval(unittest.TestCase):
         self.assertAlmostEqual(s["max_distortion"], math.sqrt(0.5), places=12)
         s = json.loads(run("eval", obj, "--measure", "asap", "--summary", "-", "-q", check_code=0).stdout)
         self.assertAlmostEqual(s["max_distortion"], 0.0, places=12)
+        self.assertTrue(s["usable"])
+        self.assertIn("no solve", s["stop_reason"])
+        # fd of a parametrization would be against each triangle's arbitrary in-plane frame.
+        p = run("eval", obj, "--measure", "fd", check_code=1)
+        self.assertIn("fd of a parametrization needs its target frames", p.stderr)
+        # The faces of a UV-mapped OBJ must be the rest's (shuffled ones paired each triangle
+        # with another's texture coordinates: 0.73 for an exact map).
+        rest = write(os.path.join(self.dir, "rest.obj"), f"v 0 0 0\nv 1 0 0\nv 1 {c} {sn}\nv 0 {c} {sn}\nf 1 2 3\nf 1 3 4\n")
+        shuffled = write(os.path.join(self.dir, "shuffled.obj"), text.replace("f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+                                                                               "f 1/1 3/3 4/4\nf 1/1 2/2 3/3\n"))
+        p = run("eval", rest, shuffled, check_code=1)
+        self.assertIn("different vertices", p.stderr)
+        # Some faces with vt, some without: the error says so.
+        partial = write(os.path.join(self.dir, "partial.obj"), text.replace("f 1/1 3/3 4/4", "f 1 3 4"))
+        p = run("eval", partial, check_code=1)
+        self.assertIn("texture coordinates ignored", p.stderr)
 
     def test_report_of_a_deformation_and_of_a_parametrization(self):
         rest = write(os.path.join(self.dir, "rest.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n")

@@ -80,6 +80,21 @@ class Report(unittest.TestCase):
             json.dump({"task": "deform", "input": "example:square", "method": "l2"}, f)
         p = run("report", os.path.join(self.dir, "out"), os.path.join(self.dir, "x.json"), check_code=1)
         self.assertIn("no output mesh", p.stderr)
+        # A distortion file with NaN or a negative value is not a distortion (it gave a verdict
+        # "its maximum is n/a"); a .ply result is not read back (it said "no vertices found").
+        run("deform", "--example", "square", "--method", "l2", "-o", "l2.obj", "--distortion", "l2.txt", "--summary",
+            "l2.json", "--quiet", cwd=self.dir, check_code=0)
+        lines = read(os.path.join(self.dir, "l2.txt")).split("\n")
+        for bad in ("nan", "-0.5"):
+            with open(os.path.join(self.dir, "l2.txt"), "w") as f:
+                f.write("\n".join([bad] + lines[1:]))
+            p = run("report", "out2", "l2.json", cwd=self.dir, check_code=1)
+            self.assertIn("l2.txt: line 1", p.stderr)
+            self.assertIn("not a distortion", p.stderr)
+        run("deform", "--example", "square", "--method", "l2", "-o", "l2.ply", "--summary", "ply.json", "--quiet",
+            cwd=self.dir, check_code=0)
+        p = run("report", "out3", "ply.json", cwd=self.dir, check_code=1)
+        self.assertIn("'.ply' is written by the tasks but not read back", p.stderr)
 
 
 if __name__ == "__main__":

@@ -154,6 +154,11 @@ def test_tasks(square):
         strictmin.distortion(V, F, V[:-1])
     with pytest.raises(ValueError, match="one length"):
         strictmin.compare(np.ones(3), np.ones(4))
+    for bad in ({"value_tolerance": -1}, {"value_tolerance": float("nan")}, {"area_tolerance": -1}):
+        with pytest.raises(ValueError, match="must be >= 0"):
+            strictmin.compare(np.ones(3), np.ones(3), **bad)
+    # Infinite maxima tie (inf - inf made each of two identical vectors the lesser).
+    assert strictmin.compare(np.array([np.inf, 1.0]), np.array([np.inf, 1.0])).order == 0
 
 
 def test_surface_deforms_in_3d(square):

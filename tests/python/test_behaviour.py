@@ -219,6 +219,19 @@ def test_read_write_round_trip(tmp_path):
         strictmin.write_mesh(tmp_path / "q.ply", V, F, quality=q[:3])
 
 
+def test_write_mesh_refuses_what_the_format_cannot_hold(tmp_path):
+    # uv is an OBJ's vt, quality a PLY's face property: elsewhere they were dropped silently.
+    V, F = grid(2)
+    uv = V.copy()
+    for ext in ("ply", "off"):
+        with pytest.raises(ValueError, match="cannot hold it"):
+            strictmin.write_mesh(tmp_path / f"x.{ext}", V, F, uv=uv)
+    with pytest.raises(ValueError, match="cannot hold it"):
+        strictmin.write_mesh(tmp_path / "x.obj", V, F, quality=np.ones(len(F)))
+    strictmin.write_mesh(tmp_path / "x.obj", V, F, uv=uv)
+    strictmin.write_mesh(tmp_path / "x.ply", V, F, quality=np.ones(len(F)))
+
+
 def test_surface_relax_in_3d():
     """A saddle surface in 3D deforms in 3D with relax (3x2 Jacobians): its far edge turned
     about the z axis and lifted, the near edge held. With fd, arap and asap relax is no higher

@@ -27,6 +27,9 @@ struct StrictComparison {
   int level = -1;            // index of the first level that differs (-1 if equivalent)
   double value_a = 0, value_b = 0;  // that level's values
   double area_a = 0, area_b = 0;    // and areas
+  // Decided by the level's values (they differ by more than value_tolerance), not by the
+  // areas at a common value: what a verdict should say.
+  bool by_value = false;
 };
 
 // Compares a and b (same elements, same weights). Values closer than value_tolerance are
