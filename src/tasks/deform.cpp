@@ -1,5 +1,8 @@
 #include "strictmin/tasks/deform.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "strictmin/io/input_error.h"
 #include "strictmin/problem/parts.h"
 #include "strictmin/problem/surface_deformation.h"
@@ -31,6 +34,16 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (surface && (options.no_flips || options.local_global.no_flips || options.solver.relax.no_flips))
     throw InputError("--no-flips is for planar triangle meshes and tet meshes; a triangle surface in 3D has no "
                      "orientation to keep (each triangle's 3x2 Jacobian has no determinant sign)");
+  // Targets within the sizes a mesh may have (mesh/validate.h): a handle at 1e200 made every
+  // distortion overflow to inf, reported by l2 as solved.
+  for (const Handle& h : handles)
+    for (Eigen::Index k = 0; k < h.position.size(); ++k)
+      if (!(std::abs(h.position(k)) <= 1e150)) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", h.position(k));
+        throw InputError("the handle of vertex " + std::to_string(h.vertex) + " has the coordinate " + value +
+                         ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the mesh and the targets)");
+      }
   out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
   const Eigen::MatrixXd rest = out.problem.positions;
   out.problem.fix(handles);

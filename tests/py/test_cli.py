@@ -164,6 +164,13 @@ class Deform(unittest.TestCase):
         self.assertIn("unknown command 'defrom'", run("defrom", "--example", "square", check_code=1).stderr)
         self.assertIn("unknown option '--bogus'", run("--bogus", check_code=1).stderr)
 
+    def test_handle_targets_beyond_the_sizes_are_refused(self):
+        # (a target at 1e200 overflowed every distortion to inf, and l2 said solved)
+        mesh = write(os.path.join(self.dir, "tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        handles = write(os.path.join(self.dir, "far.txt"), "0 1e200 0\n1 1 0\n")
+        p = run("deform", mesh, "--handles", handles, check_code=1)
+        self.assertIn("the handle of vertex 0 has the coordinate 1e+200, beyond 1e150", p.stderr)
+
     def test_unknown_output_format_is_refused_before_the_solve(self):
         p = run("deform", "--example", "square", "-o", os.path.join(self.dir, "x.stl"), check_code=1)
         self.assertIn("unknown mesh format '.stl'", p.stderr)
