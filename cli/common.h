@@ -20,6 +20,7 @@ namespace strictmin::cli {
 constexpr int kExitSuccess = 0;
 constexpr int kExitBadInput = 1;
 constexpr int kExitNotConverged = 2;
+constexpr int kExitInterrupted = 130;  // Ctrl-C or SIGTERM (128 + SIGINT, the shells' convention)
 
 struct OutputOptions {
   std::string summary;     // --summary FILE or "-" (stdout)

@@ -2,6 +2,10 @@
 #include <CLI/CLI.hpp>
 #include <dlfcn.h>
 
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -11,6 +15,7 @@
 #include "common.h"
 #include "runtime/blas_kernels.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/version.h"
 
 // OpenBLAS's own threads spin against CHOLMOD's and TBB's on small machines: one BLAS
@@ -20,6 +25,13 @@
 static void use_one_blas_thread() {
   if (std::getenv("OPENBLAS_NUM_THREADS")) return;
   if (void* f = dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) reinterpret_cast<void (*)(int)>(f)(1);
+}
+
+// Ctrl-C (SIGINT) and SIGTERM: the first asks the solvers to stop at their next iteration
+// (solvers/interrupt.h), before any output is written; a second one ends the process at once.
+static std::atomic<bool> interrupt_requested{false};
+extern "C" void on_interrupt(int) {
+  if (interrupt_requested.exchange(true)) ::_exit(strictmin::cli::kExitInterrupted);
 }
 
 int main(int argc, char** argv) {
@@ -35,7 +47,8 @@ int main(int argc, char** argv) {
       "  strictmin interp source.obj target.obj --t 0.25,0.5,0.75 --method linf -o frame\n"
       "  strictmin param disk.obj --method linf -o uv.obj\n"
       "  strictmin gparam closed.obj --method relax -o uv.obj --report R\n\n"
-      "Exit codes: 0 success, 1 bad input, 2 solver did not reach its tolerance (result still written).",
+      "Exit codes: 0 success, 1 bad input, 2 solver did not reach its tolerance (result still written), 130 "
+      "interrupted (Ctrl-C).",
       "strictmin"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "strictmin " + std::string(strictmin::version()));
@@ -47,8 +60,20 @@ int main(int argc, char** argv) {
   strictmin::cli::add_interp_command(app, exit_code);
   strictmin::cli::add_param_command(app, exit_code);
   strictmin::cli::add_gparam_command(app, exit_code);
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+  const strictmin::InterruptScope interrupts(interrupt_requested);
   try {
     app.parse(argc, argv);
+    if (interrupt_requested) {  // after the last check: every output was written, completely
+      std::cerr << "strictmin: interrupted after the outputs were written" << std::endl;
+      return strictmin::cli::kExitInterrupted;
+    }
+  } catch (const strictmin::Interrupted&) {
+    // Outputs are written after their solve: this run's are not (interp's earlier frames and
+    // demo's earlier sections are, complete).
+    std::cerr << "strictmin: interrupted: the solve stopped before its outputs were written" << std::endl;
+    return strictmin::cli::kExitInterrupted;
   } catch (const CLI::RequiredError& e) {
     // "A subcommand is required" also answers a mistyped command or option before any command:
     // name what was given instead.

@@ -93,6 +93,75 @@ TEST(Exact, MatchesBruteForceOnIndependentRings) {
   EXPECT_GE(exact.iterations, 2);
 }
 
+// Elements whose vertices are all handles are constants: the levels run over the others. One
+// constant is made the largest distortion by far (a handle moved away that no free vertex
+// shares an element with). Before, the first level's L-infinity solve kept it in k, so the
+// free elements' first level was wherever that solve's map left them (gecko: 1.316 where
+// they reach 1.035), and exact and direct ended above relax. Now both match the rings'
+// brute force as without the constant, the maximum is the constant's, and the lower bound
+// is exact. With every vertex fixed, exact returned no map (and deform crashed on it).
+TEST(Exact, ConstantElementsAboveTheFreeOnesAreLeftOut) {
+  // A 6 x 2 strip with free vertices 8 and 10 (independent rings), the others handles, sheared
+  // as in two_ring_problem; its right end is made of constant elements.
+  const Mesh mesh = make_grid(6, 2, 6.0, 2.0);
+  Problem p = make_problem(mesh);
+  std::vector<Handle> h;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (v == 8 || v == 10) continue;
+    Eigen::Vector2d x = mesh.V.row(v);
+    x(1) += 0.3 * std::sin(1.3 * v);
+    x(0) += 0.05 * std::cos(2.1 * v);
+    h.push_back({v, x});
+  }
+  p.fix(h);
+  int far = -1;
+  for (int v = 0; v < p.num_vertices && far < 0; ++v) {
+    bool touches_free = false;
+    for (int e = 0; e < p.num_elements(); ++e)
+      for (int j = 0; j < 3; ++j)
+        if (p.elements(e, j) == v)
+          for (int k = 0; k < 3; ++k) touches_free |= !p.fixed[p.elements(e, k)];
+    if (p.fixed[v] && !touches_free) far = v;
+  }
+  ASSERT_GE(far, 0);
+  p.positions(far, 0) += 3.0;
+  const Eigen::VectorXd start = field_deviation(p, p.positions);
+  const Result exact = solve_exact(p);
+  ASSERT_TRUE(exact.ok()) << exact.message;
+  DirectOptions o;
+  o.delta_k = 1e-4;
+  o.k_min = 0;
+  const Result direct = solve_direct(p, o);
+  ASSERT_TRUE(direct.ok()) << direct.message;
+  Eigen::MatrixXd X = exact.positions;
+  for (int v : {8, 10}) X.row(v) = brute_force_vertex(p, v, X).transpose();
+  const Eigen::VectorXd brute = field_deviation(p, X);
+  double constant_max = 0, free_max = 0;
+  for (int e = 0; e < p.num_elements(); ++e) {
+    bool constant = true;
+    for (int j = 0; j < 3; ++j) constant &= p.fixed[p.elements(e, j)] != 0;
+    (constant ? constant_max : free_max) = std::max(constant ? constant_max : free_max, brute(e));
+    EXPECT_NEAR(exact.distortion(e), brute(e), 1e-3) << "exact, element " << e;
+    EXPECT_NEAR(direct.distortion(e), brute(e), 2e-3) << "direct, element " << e;
+  }
+  ASSERT_GT(constant_max, free_max + 0.5);  // the constant is far above every free element
+  EXPECT_NEAR(exact.history[0].max_distortion, free_max, 1e-6);  // the first level is the free elements'
+  EXPECT_NEAR(direct.history[0].max_distortion, free_max, 1e-6);
+  EXPECT_DOUBLE_EQ(exact.lower_bound, start.maxCoeff());
+  EXPECT_DOUBLE_EQ(direct.lower_bound, start.maxCoeff());
+
+  Problem held = p;
+  std::vector<Handle> all;
+  for (int v = 0; v < held.num_vertices; ++v) all.push_back({v, held.positions.row(v).transpose()});
+  held.fix(all);
+  for (const Result& r : {solve_exact(held), solve_direct(held, o)}) {
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.positions.rows(), held.num_vertices);
+    EXPECT_DOUBLE_EQ(r.distortion.maxCoeff(), start.maxCoeff());
+    EXPECT_DOUBLE_EQ(r.lower_bound, start.maxCoeff());
+  }
+}
+
 // The paper's Figure 2 at a small size: boundary fixed, centre moved sideways.
 Problem small_square() { return example_problem(make_square_example(6)); }
 

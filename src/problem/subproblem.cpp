@@ -81,13 +81,18 @@ std::vector<char> vertices_within_rings(const Problem& p, const std::vector<char
   std::vector<char> in = seeds;
   for (int ring = 1; ring < rings; ++ring) {
     std::vector<char> next = in;
+    bool grew = false;
     for (int e = 0; e < E; ++e) {
       bool touches = false;
       for (int j = 0; j < c && !touches; ++j) touches = in[p.elements(e, j)];
       if (touches)
-        for (int j = 0; j < c; ++j) next[p.elements(e, j)] = 1;
+        for (int j = 0; j < c; ++j) {
+          grew |= !next[p.elements(e, j)];
+          next[p.elements(e, j)] = 1;
+        }
     }
     in.swap(next);
+    if (!grew) break;  // every further ring is the same set (a huge `rings` ran this loop on)
   }
   return in;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/subproblem.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
@@ -12,18 +13,11 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/interrupt.h"
 #include "solvers/linf_warm_start.h"
+#include "solvers/strict_constants.h"
 #include "solvers/strict_pinning.h"
 
 namespace strictmin {
 namespace {
-
-// Elements with a vertex that is free: the others are constants of the problem.
-std::vector<char> movable_elements(const Problem& p) {
-  std::vector<char> movable(p.num_elements(), 0);
-  for (int e = 0; e < p.num_elements(); ++e)
-    for (int j = 0; j < p.corners(); ++j) movable[e] |= p.fixed[p.elements(e, j)] ? 0 : 1;
-  return movable;
-}
 
 // One level on the region that can still change (DirectOptions::moving_rings): the vertices
 // within that many rings of the free elements move, the others keep the previous level's
@@ -48,41 +42,68 @@ Result solve_restricted_level(const Problem& p, const std::vector<char>& movable
 struct ShortLevels {
   explicit ShortLevels(double reduced_accuracy) : reduced_accuracy_gap(reduced_accuracy) {}
   double reduced_accuracy_gap;  // above this certified gap a level is of reduced accuracy
-  int stalled = 0, iteration_limit = 0, reduced = 0;
+  int stalled = 0, iteration_limit = 0, reduced = 0, loose = 0;
   int worst_step = 0;
   double worst_gap = 0, worst_k = 0;
-  SolveStatus worst_status = SolveStatus::Solved;
+  SolveStatus reduced_status = SolveStatus::Solved;  // the worse of the reduced levels' statuses
   std::string first;  // the first one's message
 
+  // A level that stopped short of its own tolerance.
   void add(int step, const Result& r, double k, double certified_gap) {
-    // A level without a certified bound is of unknown accuracy: count it as the worst.
-    const double gap = std::isnan(certified_gap) ? INFINITY : certified_gap;
     if (r.status == SolveStatus::MaxIterations)
       ++iteration_limit;
     else
       ++stalled;
     if (first.empty()) first = "level " + std::to_string(step) + ": " + r.message;
-    if (gap > reduced_accuracy_gap) ++reduced;
-    if (gap > worst_gap || worst_step == 0) {
-      worst_step = step;
-      worst_gap = gap;
-      worst_k = k;
-      worst_status = r.status;
-    }
+    note_gap(step, r.status, k, certified_gap);
   }
-  // The run's status: solved unless some level is of reduced accuracy (then the status of the
-  // worst one: the map is complete, but that level is known only to within its gap).
-  SolveStatus status() const { return reduced > 0 ? worst_status : SolveStatus::Solved; }
+  // A level that met its own tolerance, which was looser than delta_k / 4 (--gap or
+  // --level-gap set so): its band is placed only to within its gap, and the run's criterion
+  // (every level within delta_k / 4) is not met, though every level did what it was asked.
+  void add_loose(int step, double k, double certified_gap) {
+    if (!(certified_gap > reduced_accuracy_gap)) return;
+    ++loose;
+    note_gap(step, SolveStatus::AlmostSolved, k, certified_gap);
+  }
+  // The run's status: solved unless some level is of reduced accuracy, else the worse of
+  // those levels' statuses (a cap shows as max-iterations): the map is complete, but those
+  // levels are known only to within their gaps.
+  SolveStatus status() const { return reduced > 0 ? reduced_status : SolveStatus::Solved; }
   std::string message(int levels) const {
+    std::string loose_note;
+    if (loose > 0) {
+      char worst[200];
+      std::snprintf(worst, sizeof worst,
+                    "%d of %d levels met their own gap but it is above delta_k / 4 (--gap or --level-gap looser "
+                    "than that; the largest certified gap %.3g at level %d)",
+                    loose, levels, worst_gap, worst_step);
+      loose_note = worst;
+    }
     const int count = stalled + iteration_limit;
-    if (count == 0) return "";
+    if (count == 0) return loose_note;
     char worst[160];
     std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap, worst_step,
                   worst_k);
     return std::to_string(count) + " of " + std::to_string(levels) + " levels stopped short of their tolerance (" +
            std::to_string(stalled) + " stalled or almost-solved, " + std::to_string(iteration_limit) +
-           " max-iterations) and were used; " + std::to_string(reduced) +
-           " of them with reduced accuracy (certified gap above delta_k / 4); " + worst + "; first: " + first;
+           " max-iterations) and were used; " + std::to_string(reduced - loose) +
+           " of them with reduced accuracy (certified gap above delta_k / 4); " + worst + "; first: " + first +
+           (loose_note.empty() ? "" : "; " + loose_note);
+  }
+
+ private:
+  void note_gap(int step, SolveStatus status, double k, double certified_gap) {
+    // A level without a certified bound is of unknown accuracy: count it as the worst.
+    const double gap = std::isnan(certified_gap) ? INFINITY : certified_gap;
+    if (gap > reduced_accuracy_gap) {
+      ++reduced;
+      reduced_status = worse_status(reduced_status, status);
+    }
+    if (gap > worst_gap || worst_step == 0) {
+      worst_step = step;
+      worst_gap = gap;
+      worst_k = k;
+    }
   }
 };
 
@@ -106,6 +127,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   if (!linf_options.is_valid(&why)) throw InputError("linf: " + why);
   const std::vector<char> movable = movable_elements(p);
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  const double constant_max = bound_constant_elements(p, movable, bounds);
   int fixed_total = 0, free_left = 0;
   for (char m : movable) free_left += m;
   LinfOptions linf = linf_options;
@@ -115,6 +137,10 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   std::string stop_message;  // a level that ended the run
   double k = INFINITY;
   out.positions = p.positions;
+  if (free_left == 0) {  // nothing moves: the problem's map is the answer, its maximum exact
+    out.distortion = field_deviation(p, p.positions);
+    out.lower_bound = out.distortion.size() ? out.distortion.maxCoeff() : 0.0;
+  }
   Problem level = p;
   // Pinning needs the field deviation's strict convexity (not the local-global or frame
   // levels' measures); the problem's own equalities (seams) are written on each level.
@@ -183,8 +209,11 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
         break;
       }
       short_levels.add(step, r, reached, gap);
+    } else {
+      short_levels.add_loose(step, reached, gap);
     }
-    if (step == 1) out.lower_bound = r.lower_bound;
+    // The largest distortion is at least the constants' (which the solves leave out).
+    if (step == 1) out.lower_bound = std::max(r.lower_bound, constant_max);
     out.positions = r.positions;
     out.distortion = r.distortion;
     // The interior-point map meets the fixed bounds only to the solver's tolerance; widen

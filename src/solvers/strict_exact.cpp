@@ -31,7 +31,9 @@
 #include "strictmin/solvers/timing.h"
 #include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
+#include "solvers/strict_constants.h"
 #include "solvers/strict_pinning.h"
+#include "strictmin/measures/field_deviation.h"
 
 namespace strictmin {
 namespace {
@@ -57,17 +59,22 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
                      std::to_string(p.num_elements()) + " elements is above its limit of " +
                      std::to_string(options.max_elements) + " (use --method direct or relax)");
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<char> movable(p.num_elements(), 0);
+  const std::vector<char> movable = movable_elements(p);
   int undecided = 0;
-  for (int e = 0; e < p.num_elements(); ++e) {
-    for (int j = 0; j < p.corners(); ++j) movable[e] |= p.fixed[p.elements(e, j)] ? 0 : 1;
-    undecided += movable[e];
-  }
+  for (char m : movable) undecided += m;
   const double tol = options.tolerance;
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  const double constant_max = bound_constant_elements(p, movable, bounds);
   LinfOptions linf = linf_options;
   linf.progress = nullptr;
   Result out;
+  // With no movable element nothing is decided: the problem's map is the answer.
+  out.positions = p.positions;
+  out.distortion = field_deviation(p, p.positions);
+  if (undecided == 0) {
+    out.lower_bound = out.distortion.size() ? out.distortion.maxCoeff() : 0.0;
+    out.message = "nothing to optimise: every element has all its vertices fixed";
+  }
   int solves = 0, fixed_total = 0;
   // Essential elements are pinned (strict_pinning.h) on problems without equalities: every
   // solve after the first runs on the level's problem, from the map in hand.
@@ -113,7 +120,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
     check_interrupt();  // solvers/interrupt.h
     const Result r = solve(level_problem(out), bounds, out);
     ++solves;
-    if (level == 1) out.lower_bound = r.lower_bound;
+    if (level == 1) out.lower_bound = std::max(r.lower_bound, constant_max);  // the constants are left out
     out.positions = r.positions;
     out.distortion = r.distortion;
     if (r.status != SolveStatus::Solved && !(level > 1 && within_deciding_gap(r))) {

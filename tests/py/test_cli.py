@@ -1,6 +1,7 @@
 """End-to-end tests of the strictmin command line: summaries, outputs, exit codes and the
 messages for bad input. Run by ctest with STRICTMIN_CLI pointing at the built tool."""
 import json
+import signal
 import math
 import os
 import subprocess
@@ -163,6 +164,31 @@ class Deform(unittest.TestCase):
         # (CLI11 said "A subcommand is required" to both.)
         self.assertIn("unknown command 'defrom'", run("defrom", "--example", "square", check_code=1).stderr)
         self.assertIn("unknown option '--bogus'", run("--bogus", check_code=1).stderr)
+
+    def test_ctrl_c_stops_the_solve_and_writes_nothing(self):
+        # Ctrl-C (SIGINT) during direct's levels: exit 130 at the next level, no output file or
+        # temporary left (the signal killed the process before, with no message).
+        n = 60
+        lines = [f"v {i} {j} 0" for j in range(n + 1) for i in range(n + 1)]
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i + 1
+                lines += [f"f {a} {a + 1} {a + n + 2}", f"f {a} {a + n + 2} {a + n + 1}"]
+        mesh = write(os.path.join(self.dir, "grid.obj"), "\n".join(lines) + "\n")
+        handles = [f"{j * (n + 1)} 0 {j}" for j in range(n + 1)] + \
+                  [f"{j * (n + 1) + n} {n + 0.4 * n * math.sin(j / 7)} {j}" for j in range(n + 1)]
+        h = write(os.path.join(self.dir, "h.txt"), "\n".join(handles) + "\n")
+        out, summary = os.path.join(self.dir, "o.obj"), os.path.join(self.dir, "s.json")
+        p = subprocess.Popen([CLI, "deform", mesh, "--handles", h, "--method", "direct", "--k-min", "0", "-o", out,
+                              "--summary", summary], stderr=subprocess.PIPE, text=True)
+        for line in p.stderr:  # the levels have started
+            if "strict step   2" in line:
+                break
+        p.send_signal(signal.SIGINT)
+        rest = p.stderr.read()
+        self.assertEqual(p.wait(timeout=60), 130, rest[-2000:])
+        self.assertIn("interrupted", rest)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["grid.obj", "h.txt"])
 
     def test_handle_targets_beyond_the_sizes_are_refused(self):
         # (a target at 1e200 overflowed every distortion to inf, and l2 said solved)
