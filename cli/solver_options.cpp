@@ -44,7 +44,7 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
       ->capture_default_str()
       ->check(at_least(0));
   g->add_option("--level-gap", a.level_gap,
-                "direct: relative gap at which the levels after the first stop (default -1: delta-k / 100; the "
+                "direct: relative gap at which the levels after the first stop (negative, the default -1: delta-k / 100; the "
                 "first level uses --gap; below 1)")
       ->capture_default_str()
       ->check(less_than(1));

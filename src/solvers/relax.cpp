@@ -75,6 +75,8 @@ void set_relax_status(Result& result, const RelaxOptions& options, bool moves_se
     result.message = "converged: no vertex moved more than the move tolerance in sweep " + std::to_string(result.iterations);
   else if (stop.criterion_met)
     result.message = "ran the requested " + std::to_string(options.sweeps) + " sweeps";
+  else if (options.sweeps == 0)
+    result.message = "no sweep ran (--sweeps 0), so the move tolerance could not be checked";
   else
     result.message = "reached the sweep cap (" + std::to_string(options.sweeps) +
                      ") with vertices still moving more than the move tolerance";

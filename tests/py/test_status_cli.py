@@ -48,6 +48,48 @@ class Statuses(unittest.TestCase):
             # The global steps' bound is not a bound on ARAP: it has its own key.
             self.assertNotIn("fd_step_lower_bound", s)  # l2 has none
 
+    def test_each_criterion_is_the_statuss(self):
+        def summary(*args, code):
+            return json.loads(run("deform", "--example", "square", *args, "--summary", "-", "--quiet",
+                                  check_code=code).stdout)
+        # direct is solved only with every level within delta-k / 4, also when --level-gap or
+        # --gap loosened the levels themselves (it said solved with gaps of 0.35).
+        for loose in (["--level-gap", "0.999"], ["--gap", "0.5"]):
+            s = summary("--method", "direct", *loose, code=2)
+            self.assertEqual(s["status"], "almost-solved", loose)
+            self.assertGreater(s["worst_level_gap"], 2.5e-4)
+            self.assertIn("above delta_k / 4", s["stop_reason"])
+        # qc's feasibility programs at --max-iterations: a cap (it was ignored).
+        s = summary("--measure", "qc", "--method", "linf", "--max-iterations", "1", code=2)
+        self.assertEqual(s["status"], "max-iterations")
+        self.assertIn("interior-point cap (1)", s["stop_reason"])
+        # A huge --moving-rings is every vertex (it looped 2e9 times).
+        a = summary("--method", "direct", "--moving-rings", "2000000000", code=0)
+        b = summary("--method", "direct", "--moving-rings", "1000", code=0)
+        self.assertEqual((a["levels"], a["max_distortion"]), (b["levels"], b["max_distortion"]))
+
+    def test_lp_on_an_exact_map_converges(self):
+        # Handles at the rest positions: every map distortion 0; lp ran to its Newton cap at p = 4.
+        with tempfile.TemporaryDirectory() as d:
+            n = 4
+            verts = [f"v {i} {j} 0" for j in range(n + 1) for i in range(n + 1)]
+            faces = []
+            for j in range(n):
+                for i in range(n):
+                    a = j * (n + 1) + i + 1
+                    faces += [f"f {a} {a + 1} {a + n + 2}", f"f {a} {a + n + 2} {a + n + 1}"]
+            mesh = os.path.join(d, "g.obj")
+            with open(mesh, "w") as f:
+                f.write("\n".join(verts + faces) + "\n")
+            handles = os.path.join(d, "h.txt")
+            with open(handles, "w") as f:
+                f.write("0 0 0\n")
+            s = json.loads(run("deform", mesh, "--handles", handles, "--method", "lp", "--summary", "-", "--quiet",
+                               check_code=0).stdout)
+            self.assertEqual(s["status"], "solved")
+            self.assertLess(s["max_distortion"], 1e-10)
+            self.assertIn("zero to rounding", s["stop_reason"])
+
     def test_arap_linf_lower_bound_moves_to_its_own_key(self):
         p = run("deform", "--example", "bar", "--measure", "arap", "--method", "linf", "--lg-iterations", "3",
                 "--summary", "-", "--quiet")

@@ -73,7 +73,10 @@ FeasibilityTest test_level(const BisectionSetup& s, double free_level, const Eig
   // 3. Otherwise the optimum slack's sign decides, when the solve converged away from 0.
   if (out.verdict == Verdict::Undecided && r.pobj > 0 && corrected_dual_bound(program, r.z, s.cache) > 0)
     out.verdict = Verdict::Infeasible;
-  if (out.verdict == Verdict::Undecided) out.message = r.message;
+  if (out.verdict == Verdict::Undecided) {
+    out.message = r.message;
+    out.capped = r.status == SparseSocpStatus::MaxIterations;
+  }
   return out;
 }
 
@@ -89,6 +92,7 @@ FeasibilityTest test_into(const BisectionSetup& s, double level, BisectionOutcom
   FeasibilityTest t = test_level(s, level, out.x);
   ++out.steps;
   out.ipm_iterations += t.ipm_iterations;
+  out.capped_tests += t.capped ? 1 : 0;
   if (t.verdict == Verdict::Feasible) {
     out.x = t.x;
     out.value = std::min(t.value, level);

@@ -24,6 +24,7 @@ struct FeasibilityTest {
   Eigen::VectorXd x;
   double value = 0;
   int ipm_iterations = 0;
+  bool capped = false;  // undecided because the program reached its interior-point cap
   std::string message;
 };
 
@@ -52,6 +53,7 @@ struct BisectionOutcome {
   double lower = 0;            // bracket's lower end (certified or undecided)
   double certified_lower = std::numeric_limits<double>::quiet_NaN();  // largest level certified infeasible
   int steps = 0, ipm_iterations = 0;
+  int capped_tests = 0;  // tests left undecided by the interior-point cap (--max-iterations)
   // The certified bracket [max(floor, certified_lower), value] is within the tolerance.
   bool converged = false;
   // Not converged, but the bracket [lower, value] is: its lower end is a level that the test

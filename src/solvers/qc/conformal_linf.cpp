@@ -132,6 +132,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     current = qc::free_max(setup, x);
   }
   bool converged = false, closed_undecided = false;
+  int capped_tests = 0;  // of the last bisection
   double last_improvement = 1.0;  // relative, of the last frame iteration
   std::string message;
   // 4. Frame iterations: bisection for the frames of the current map, then new frames.
@@ -185,6 +186,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
     if (improvement <= options.frame_tolerance * current && tolerance <= options.bisection_tolerance) {
       converged = b.converged;
       closed_undecided = b.closed_undecided;
+      capped_tests = b.capped_tests;
       break;
     }
   }
@@ -194,10 +196,23 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   out.iterations = st.frame_iterations;
   if (out.status == SolveStatus::Solved && !converged) {
     StopState stop;
-    stop.within_acceptable = closed_undecided;  // the bracket closed, but not by a certificate
-    stop.cap_reached = !closed_undecided;
+    // The bracket closed, but not by a certificate: within the looser tolerance, unless tests
+    // were left undecided by the interior-point cap (--max-iterations), which is a cap.
+    stop.within_acceptable = closed_undecided && capped_tests == 0;
+    stop.cap_reached = !stop.within_acceptable;
     out.status = decide_status(stop);
+    if (capped_tests > 0)
+      message += "; " + std::to_string(capped_tests) + " feasibility tests of the last bisection stopped at the "
+                 "interior-point cap (" + std::to_string(options.max_ipm_iterations) + ")";
     if (message.empty()) message = "frame iterations stopped at their limit while still lowering the maximum";
+  }
+  if (out.status == SolveStatus::Solved && message.empty()) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "converged: the last frame iteration lowered the maximum by less than %g relative, its bracket "
+                  "certified within the tolerance (%d frame iterations)",
+                  options.frame_tolerance, st.frame_iterations);
+    message = text;
   }
   out.message = message;
   out.time_s = seconds_since(t0);
