@@ -21,6 +21,7 @@ $S deform square.obj --handles handles.txt --measure asap --method relax -o asap
 # The ASAP maps' quasiconformal distortion, for the same histogram.
 $S eval square.obj asap_direct.obj --measure qc --summary asap_direct_qc.json --distortion asap_direct_qc.txt -q
 $S eval square.obj asap_relax.obj --measure qc --summary asap_relax_qc.json --distortion asap_relax_qc.txt -q
+# Exit 2 says some run is not `solved` (qc direct is almost-solved here): the report is written.
 $S report report --scale 1 --run qc_linf.json --run qc_direct.json --run asap_direct_qc.json \
-    --run asap_relax_qc.json -q
+    --run asap_relax_qc.json -q || [ $? -eq 2 ]
 echo "open $OUT/report/index.html"

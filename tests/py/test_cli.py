@@ -190,6 +190,21 @@ class Deform(unittest.TestCase):
         self.assertIn("interrupted", rest)
         self.assertEqual(sorted(os.listdir(self.dir)), ["grid.obj", "h.txt"])
 
+    def test_readmes_homer_handles(self):
+        # README's 3D surface example: the script that writes its handles, then the deformation.
+        homer = os.path.join(DATA, "closed", "homer.obj")
+        if not os.path.exists(homer):
+            self.skipTest("no shared data")
+        script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python", "homer_handles.py")
+        text = subprocess.run([sys.executable, script, homer], capture_output=True, text=True, check=True).stdout
+        lines = text.split("\n")[:-1]
+        self.assertGreater(len(lines), 100)
+        self.assertTrue(all(len(l.split()) == 4 for l in lines))
+        handles = write(os.path.join(self.dir, "homer_handles.txt"), text)
+        s = json.loads(run("deform", homer, "--handles", handles, "--method", "l2", "--summary", "-", "--quiet",
+                           check_code=0).stdout)
+        self.assertEqual(s["handles"], len(lines))
+
     def test_handle_targets_beyond_the_sizes_are_refused(self):
         # (a target at 1e200 overflowed every distortion to inf, and l2 said solved)
         mesh = write(os.path.join(self.dir, "tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
