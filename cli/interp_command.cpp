@@ -96,8 +96,15 @@ int run_interp(const InterpArgs& a) {
     char shown[32];
     std::snprintf(shown, sizeof shown, "%g", t);
     if (!(t >= 0.0 && t <= 1.0)) throw InputError(std::string("--t: ") + shown + " is outside [0, 1]");
-    for (size_t j = 0; j < i; ++j)
-      if (a.times[j] == t) throw InputError(std::string("--t: ") + shown + " is given twice (each time writes its own file)");
+    // Times printed alike name one file (%g: 0.33333333 and 0.333333334 both give 0.333333).
+    for (size_t j = 0; j < i; ++j) {
+      char other[32];
+      std::snprintf(other, sizeof other, "%g", a.times[j]);
+      if (std::string(other) == shown)
+        throw InputError(std::string("--t: ") + shown + " is given twice" +
+                         (a.times[j] == t ? "" : " (as printed in the frame's file name, %g)") +
+                         " (each time writes its own file)");
+    }
   }
   if (!a.out.distortion.empty() && a.times.size() != 1)
     throw InputError("--distortion writes one frame: give a single --t value with it");
@@ -192,6 +199,9 @@ void add_interp_command(CLI::App& app, int& exit_code) {
   // 0.6 would show them all dark blue).
   args->report.scale = 0;
   add_report_options(*cmd, args->report);
+  cmd->get_option("--report-scale")
+      ->description("Report: the distortion shown red (dark blue is 0); 0: automatic, 1.5 times the largest frame "
+                    "maximum rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten");
   cmd->callback([args, &exit_code] { exit_code = run_interp(*args); });
 }
 

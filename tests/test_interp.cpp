@@ -13,6 +13,8 @@
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/measures/polar.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/local_global.h"
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/rotation_unwrap.h"
 
@@ -145,6 +147,34 @@ TEST(Interp, TetBarTwist) {
     EXPECT_EQ(f.stats.flipped, 0) << method_name(m);
     EXPECT_LT(f.stats.max, 0.2) << method_name(m);
   }
+}
+
+// direct's levels on an interpolation: every level is the whole problem (the shapes Y_T(t) are
+// per element of it; a level restricted to its moving region renumbered the elements and took
+// other elements' shapes: the tet bar's third level was declared infeasible). Solved, with
+// the maximum of linf's local-global and never above it.
+TEST(Interp, DirectLevelsKeepEachElementsShape) {
+  const Mesh bar = make_tet_box(8, 2, 2, 4.0, 1.0, 1.0);
+  Mesh target = bar;
+  for (int v = 0; v < bar.num_vertices(); ++v) {
+    const double a = bar.V(v, 0) / 4.0 * (150.0 / 180.0) * kPi, y = bar.V(v, 1) - 0.5, z = bar.V(v, 2) - 0.5;
+    target.V(v, 1) = std::cos(a) * y - std::sin(a) * z;
+    target.V(v, 2) = std::sin(a) * y + std::cos(a) * z;
+  }
+  const Interpolator interp(bar, target);
+  InterpOptions o = options_for(Method::Direct);
+  o.solver.direct.k_min = 0;
+  const InterpFrame direct = interp.at(0.5, o);
+  ASSERT_EQ(direct.result.status, SolveStatus::Solved) << direct.result.message;
+  EXPECT_GE(direct.result.iterations, 2);
+  const InterpFrame linf = interp.at(0.5, options_for(Method::Linf));
+  EXPECT_LE(direct.stats.max, linf.stats.max * (1 + 1e-4));
+  EXPECT_EQ(direct.stats.flipped, 0);
+  // Shapes that do not fit the problem are refused, not read out of range.
+  LocalGlobalOptions bad;
+  bad.shapes = Eigen::MatrixXd::Identity(3, 3);
+  const Problem p = make_problem(bar);
+  EXPECT_THROW(local_global(p, p.positions, SolverOptions{}, bad), InputError);
 }
 
 TEST(Interp, SurfaceInSpace) {

@@ -177,8 +177,9 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
          "minimizer is the least map in this order.</p>\n<ul>\n";
     for (const auto& v : verdicts) h << "<li>" << escape(v) << ".</li>\n";
     if (all_equivalent && s.methods.size() > 1) {
-      h << "<li>All these maps have the same distortion distribution: here the least maximum can be reached by "
-           "every element at once, so there is nothing to concentrate or spread.</li>\n";
+      // (Not an explanation of why: the maps may simply be the same one, e.g. relax with no sweep.)
+      h << "<li>All these maps have the same distortion distribution: none is less distorting than another in "
+           "the strict order.</li>\n";
     } else {
       // The least of all the methods shown (when all are comparable with the first).
       std::size_t best = 0;

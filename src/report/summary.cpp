@@ -218,6 +218,9 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, InterpKind kind, const
   add_status_summary(j, f.result);
   add_solver_summary(j, options.solver, f.result);
   add_local_global_summary(j, f.result);
+  // --lg-iterations 0: one global solve, no local-global iteration (iterations and history
+  // are that solve's).
+  if (options.local_global.max_iterations == 0) j["local_global_iterations"] = 0;
   return j;
 }
 

@@ -285,6 +285,13 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   if (!o.is_valid(&why)) throw InputError("local-global: " + why);
   if (!solver.is_valid(&why)) throw InputError("invalid solver options: " + why);
   relax_detail::check_no_flips(problem, o.no_flips || solver.relax.no_flips, "local-global");
+  if (o.shapes.size() != 0 &&
+      (o.shapes.rows() != static_cast<Eigen::Index>(problem.num_elements()) * problem.image_dim ||
+       o.shapes.cols() != problem.domain_dim))
+    throw InputError("local-global: shapes has " + std::to_string(o.shapes.rows()) + " by " +
+                     std::to_string(o.shapes.cols()) + " entries, the problem needs " +
+                     std::to_string(problem.num_elements() * problem.image_dim) + " by " +
+                     std::to_string(problem.domain_dim));
   Problem p = problem;
   Result out;
   out.positions = X0;
@@ -344,6 +351,11 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     // Every level of the direct algorithm runs local-global L-infinity iterations; bounds
     // fixed at earlier levels stay valid because the local step never raises a D_T.
     DirectOptions direct = solver.direct;
+    // Per-element shapes (interpolation) are indexed by the whole problem's elements, which a
+    // level restricted to its moving region renumbers: every level runs on the whole problem
+    // (with the region, the tet bar's third level took other elements' shapes and was
+    // declared infeasible).
+    if (o.shapes.size() != 0) direct.moving_rings = 0;
     p.positions = out.positions;  // the first level starts here
     direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
       SolverOptions inner;
