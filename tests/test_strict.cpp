@@ -10,6 +10,7 @@
 #include <memory>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -30,20 +31,38 @@ namespace {
 // share no element: their rings are independent 1-vertex problems. Boundary handles are
 // perturbed so that the two rings have different optimal maxima; the L-infinity optimum
 // leaves the lower ring undetermined, the strict minimizer does not.
-Problem two_ring_problem() {
-  const Mesh mesh = make_grid(4, 2, 4.0, 2.0);
+// A cols x 2 strip whose free vertices are the two given interior ones, the others handles
+// moved by shear(x) * sin(1.3 v) across and 0.05 cos(2.1 v) along.
+Problem ring_strip(int cols, int free_a, int free_b, const std::function<double(double)>& shear) {
+  const Mesh mesh = make_grid(cols, 2, cols, 2.0);
   Problem p = make_problem(mesh);
   std::vector<Handle> h;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (v == 6 || v == 8) continue;
+    if (v == free_a || v == free_b) continue;
     Eigen::Vector2d x = mesh.V.row(v);
-    // Shear the left half strongly, the right half mildly.
-    x(1) += (x(0) <= 2.0 ? 0.5 : 0.1) * std::sin(1.3 * v);
+    x(1) += shear(x(0)) * std::sin(1.3 * v);
     x(0) += 0.05 * std::cos(2.1 * v);
     h.push_back({v, x});
   }
   p.fix(h);
   return p;
+}
+
+// The left half sheared strongly, the right half mildly.
+Problem two_ring_problem() {
+  return ring_strip(4, 6, 8, [](double x) { return x <= 2.0 ? 0.5 : 0.1; });
+}
+
+// exact, and direct to k_min 0 at the given delta-k, both required solved.
+std::pair<Result, Result> exact_and_direct(const Problem& p, double delta_k) {
+  Result exact = solve_exact(p);
+  EXPECT_TRUE(exact.ok()) << exact.message;
+  DirectOptions o;
+  o.delta_k = delta_k;
+  o.k_min = 0;
+  Result direct = solve_direct(p, o);
+  EXPECT_TRUE(direct.ok()) << direct.message;
+  return {std::move(exact), std::move(direct)};
 }
 
 // Brute force for one free vertex: the lexicographically smallest sorted distortion vector
@@ -101,19 +120,9 @@ TEST(Exact, MatchesBruteForceOnIndependentRings) {
 // brute force as without the constant, the maximum is the constant's, and the lower bound
 // is exact. With every vertex fixed, exact returned no map (and deform crashed on it).
 TEST(Exact, ConstantElementsAboveTheFreeOnesAreLeftOut) {
-  // A 6 x 2 strip with free vertices 8 and 10 (independent rings), the others handles, sheared
-  // as in two_ring_problem; its right end is made of constant elements.
-  const Mesh mesh = make_grid(6, 2, 6.0, 2.0);
-  Problem p = make_problem(mesh);
-  std::vector<Handle> h;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (v == 8 || v == 10) continue;
-    Eigen::Vector2d x = mesh.V.row(v);
-    x(1) += 0.3 * std::sin(1.3 * v);
-    x(0) += 0.05 * std::cos(2.1 * v);
-    h.push_back({v, x});
-  }
-  p.fix(h);
+  // A 6 x 2 strip with free vertices 8 and 10 (independent rings); its right end is made of
+  // constant elements.
+  Problem p = ring_strip(6, 8, 10, [](double) { return 0.3; });
   int far = -1;
   for (int v = 0; v < p.num_vertices && far < 0; ++v) {
     bool touches_free = false;
@@ -126,13 +135,8 @@ TEST(Exact, ConstantElementsAboveTheFreeOnesAreLeftOut) {
   ASSERT_GE(far, 0);
   p.positions(far, 0) += 3.0;
   const Eigen::VectorXd start = field_deviation(p, p.positions);
-  const Result exact = solve_exact(p);
-  ASSERT_TRUE(exact.ok()) << exact.message;
-  DirectOptions o;
-  o.delta_k = 1e-4;
-  o.k_min = 0;
-  const Result direct = solve_direct(p, o);
-  ASSERT_TRUE(direct.ok()) << direct.message;
+  const auto [exact, direct] = exact_and_direct(p, 1e-4);
+  ASSERT_TRUE(exact.ok() && direct.ok());
   Eigen::MatrixXd X = exact.positions;
   for (int v : {8, 10}) X.row(v) = brute_force_vertex(p, v, X).transpose();
   const Eigen::VectorXd brute = field_deviation(p, X);
@@ -154,7 +158,8 @@ TEST(Exact, ConstantElementsAboveTheFreeOnesAreLeftOut) {
   std::vector<Handle> all;
   for (int v = 0; v < held.num_vertices; ++v) all.push_back({v, held.positions.row(v).transpose()});
   held.fix(all);
-  for (const Result& r : {solve_exact(held), solve_direct(held, o)}) {
+  const auto [held_exact, held_direct] = exact_and_direct(held, 1e-4);
+  for (const Result& r : {held_exact, held_direct}) {
     ASSERT_TRUE(r.ok()) << r.message;
     ASSERT_EQ(r.positions.rows(), held.num_vertices);
     EXPECT_DOUBLE_EQ(r.distortion.maxCoeff(), start.maxCoeff());
@@ -167,13 +172,8 @@ Problem small_square() { return example_problem(make_square_example(6)); }
 
 TEST(Direct, AgreesWithExact) {
   const Problem p = small_square();
-  const Result exact = solve_exact(p);
-  ASSERT_TRUE(exact.ok()) << exact.message;
-  DirectOptions o;
-  o.delta_k = 1e-3;
-  o.k_min = 0;
-  const Result direct = solve_direct(p, o);
-  ASSERT_TRUE(direct.ok()) << direct.message;
+  const auto [exact, direct] = exact_and_direct(p, 1e-3);
+  ASSERT_TRUE(exact.ok() && direct.ok());
   // Both group values within 1e-3 into one level; a level's bound can differ by up to that
   // much between them, and the levels below move like the square root of such changes on
   // this degenerate (symmetric) problem (strict_exact.cpp), so every element agrees to
