@@ -188,6 +188,11 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
     const auto measure = parse_measure(measure_text);
     if (!measure) throw InputError(file + ": unknown measure '" + measure_text + "'");
     Mesh mapped = r.run.mapped;
+    // A parametrization's fd is against the task's own frames (gparam's field, param's
+    // starting map), which the files do not carry: only the task's distortion file has it.
+    if (*measure == Measure::FieldDeviation && (mapped.has_uv() || text("task") == "param" || text("task") == "gparam"))
+      throw InputError(file + ": the summary names no distortion_file, and a parametrization's fd (against the "
+                              "task's frames) cannot be recomputed from the map: run the task with --distortion FILE");
     if (!mapped.has_uv()) mapped = to_planar(mapped);
     r.run.distortion =
         report_values(*measure, map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion);

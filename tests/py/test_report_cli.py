@@ -9,6 +9,7 @@ import unittest
 
 import cli_support
 from cli_support import CLI
+from test_gparam_cli import cube_obj
 
 
 def run(*args, cwd=None, check_code=0):
@@ -93,6 +94,12 @@ class Report(unittest.TestCase):
             self.assertIn("not a distortion", p.stderr)
         run("deform", "--example", "square", "--method", "l2", "-o", "l2.ply", "--summary", "ply.json", "--quiet",
             cwd=self.dir, check_code=0)
+        # A parametrization's fd cannot be recomputed from its map: the message says to keep the
+        # task's distortion file.
+        cube = cli_support.write(os.path.join(self.dir, "cube.obj"), "\n".join(cube_obj()[0]) + "\n")
+        run("gparam", cube, "-o", "g.obj", "--summary", "g.json", "--quiet", cwd=self.dir, check_code=0)
+        p = run("report", "out4", "g.json", cwd=self.dir, check_code=1)
+        self.assertIn("run the task with --distortion FILE", p.stderr)
         p = run("report", "out3", "ply.json", cwd=self.dir, check_code=1)
         self.assertIn("'.ply' is written by the tasks but not read back", p.stderr)
 
