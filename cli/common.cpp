@@ -134,11 +134,15 @@ void check_output_paths(const std::vector<std::pair<std::string, std::string>>& 
   }
 }
 
-void check_uv_output_path(const std::string& path) {
-  if (path.empty()) return;
+std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".obj")
+  return ext;
+}
+
+void check_uv_output_path(const std::string& path) {
+  if (path.empty()) return;
+  if (lowercase_extension(path) != ".obj")
     throw InputError("--output " + path + ": the map is written as per-corner texture coordinates (vt, f v/vt), "
                      "which only .obj holds; use a .obj name");
 }
@@ -156,8 +160,7 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
   check_output_paths(all);
   for (const auto& [flag, path] : task_outputs) {  // a mesh output's format, known before the solve
     if (flag != "--output" || path.empty()) continue;
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowercase_extension(path);
     if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".mesh")
       throw InputError("--output " + path + ": unknown mesh format '" + ext + "' (use .obj, .off, .ply or .mesh)");
   }

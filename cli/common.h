@@ -65,6 +65,8 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
 // before the solve (an .off or .ply would silently keep the input alone). param, whose map is
 // one vt per vertex, writes other formats without it, as documented.
 void check_uv_output_path(const std::string& path);
+// The file name's extension in lower case (".obj"; empty when none).
+std::string lowercase_extension(const std::string& path);
 
 // Progress line on stderr unless quiet.
 void progress(const OutputOptions& out, const std::string& line);

@@ -1,7 +1,6 @@
 // strictmin gparam MESH -o OUT.obj [--field smoothest|unit|curvature|FILE] [--cones FILE]
 //   [--field-out FILE] [--cones-out FILE]
 //   [--edge-length L | --quads N] [--measure fd|arap] [--method ...] (docs/gparam.md)
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +15,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/field/surface_graph.h"
 #include "strictmin/io/mesh_io.h"
+#include "strictmin/mesh/validate.h"
 #include "strictmin/tasks/gparam.h"
 
 namespace strictmin::cli {
@@ -86,9 +86,7 @@ int run_gparam(const GParamArgs& a) {
   const Mesh mesh = read_mesh(a.mesh, &warnings);
   // Unused vertices, which the other tasks ignore with a warning, are refused here (the
   // surface graph's message): their warning would say the opposite of the error that follows.
-  std::vector<char> used(static_cast<size_t>(mesh.V.rows()), 0);
-  for (Eigen::Index i = 0; i < mesh.F.size(); ++i) used[static_cast<size_t>(mesh.F.data()[i])] = 1;
-  if (std::find(used.begin(), used.end(), 0) != used.end()) surface_graph(mesh, a.mesh);  // throws, naming the vertex
+  if (!unreferenced_vertices(mesh).empty()) surface_graph(mesh, a.mesh);  // throws, naming the vertex
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
   const GParamOptions o = make_options(a, mesh);
   progress(a.out, "gparam: " + std::to_string(mesh.num_elements()) + " triangles, method " +

@@ -63,14 +63,7 @@ int run_param(ParamArgs a) {
     options.init_only = true;
     a.solver.method = "l2";
   }
-  // param's own names beside the solver's, in the messages for unknown ones.
-  if (!parse_method(a.solver.method))
-    throw InputError("--method: unknown method '" + a.solver.method + "' (use tutte, lscm or one of: " + method_list() +
-                     ")");
-  if (const auto init = parse_method(a.solver.init);
-      !init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
-    throw InputError("unknown --init '" + a.solver.init + "' (use tutte, lscm, l2, lp, irls or linf)");
-  options.solver = make_solver_options(a.solver, a.out);
+  options.solver = make_solver_options(a.solver, a.out, "tutte, lscm");
   apply_local_global_options(a.lg, options.local_global);
   options.no_flips = a.lg.no_flips;
   if (!a.out.quiet)

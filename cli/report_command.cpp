@@ -74,8 +74,7 @@ Eigen::VectorXd read_distortion_file(const std::string& path, int expected) {
 Eigen::MatrixXd read_positions(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowercase_extension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".mesh")
     throw InputError(path + ": the report reads results written as .obj, .off or .mesh ('" + ext +
                      "' is written by the tasks but not read back; run the task with -o OUT.obj)");

@@ -124,13 +124,16 @@ void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o)
   apply_local_global_step_options(a, o);
 }
 
-SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out) {
+SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out, const std::string& extra_names) {
   SolverOptions o;
+  const std::string extra = extra_names.empty() ? "" : extra_names + ", ";
   const auto method = parse_method(a.method);
-  if (!method) throw InputError("--method: unknown method '" + a.method + "' (use one of: " + method_list() + ")");
+  if (!method)
+    throw InputError("--method: unknown method '" + a.method + "' (use " + extra + (extra.empty() ? "" : "or ") +
+                     "one of: " + method_list() + ")");
   const auto init = parse_method(a.init);
   if (!init || *init == Method::Relax || *init == Method::Direct || *init == Method::Exact)
-    throw InputError("unknown --init '" + a.init + "' (use l2, lp, irls or linf)");
+    throw InputError("unknown --init '" + a.init + "' (use " + extra + "l2, lp, irls or linf)");
   o.method = *method;
   o.relax_init = *init;
   o.linf.gap_tolerance = a.gap;

@@ -58,6 +58,8 @@ void apply_local_global_options(const LocalGlobalArgs& args, LocalGlobalOptions&
 
 // Parses the method names and wires progress reporting (stderr unless --quiet).
 // Throws InputError for an unknown method.
-SolverOptions make_solver_options(const SolverArgs& args, const OutputOptions& out);
+// extra_names: a task's own names for --method / --init, listed first in the messages for
+// unknown ones (param: "tutte, lscm").
+SolverOptions make_solver_options(const SolverArgs& args, const OutputOptions& out, const std::string& extra_names = "");
 
 }  // namespace strictmin::cli

@@ -20,10 +20,7 @@ namespace {
 // volume <= eps * d^3, d the bounding-box diagonal of the used vertices. Real slivers
 // (0.06-degree angles) are far above this; exactly collinear/coplanar corners are below.
 constexpr double kDegenerateEps = 1e-14;
-// Sizes (the largest side of the used vertices' bounding box) the solvers take: beyond them
-// squared and cubed lengths overflow or underflow and a solve ends in numerical-error
-// (measured: 1e-150 and 1e150 solve, 1e-170 and 1e170 do not).
-constexpr double kMinSize = 1e-150, kMaxSize = 1e150;
+constexpr double kMinSize = kSmallestSize, kMaxSize = kLargestSize;
 
 class Validator {
  public:

@@ -41,11 +41,8 @@ double bound_excess(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
   return m;
 }
 
-// A map's distortion is zero to rounding (a rigid or similar map reached exactly): the
-// relative change is meaningless there, and local-global is done. Dimensionless; a surface's
-// rest frames, computed from 3D coordinates, leave about 1e-11 on an exact map (an interp
-// frame at t = 0 on lion: 6e-12, which at 1e-12 kept changing by round-off to the step cap).
-constexpr double kZeroDistortion = 1e-10;
+// A map whose distortion is zero to rounding (kZeroDistortion, field_deviation.h: a rigid or
+// similar map reached exactly) ends local-global: the relative change is round-off there.
 
 // The objective the safeguard compares: the area-weighted energy sum A_T D_T^2 for l2 (what
 // its global step minimizes), the maximum otherwise.

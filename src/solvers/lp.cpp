@@ -81,7 +81,7 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
     // Every element at zero distortion to rounding (the distortion is dimensionless): nothing
     // to lower, and a Newton decrement relative to f = round-off never settled (an exact map
     // ran to the iteration cap at p = 4).
-    if (!(scale > 1e-10)) {
+    if (!(scale > kZeroDistortion)) {
       zero = true;
       break;
     }

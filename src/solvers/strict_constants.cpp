@@ -25,4 +25,13 @@ double bound_constant_elements(const Problem& p, const std::vector<char>& movabl
   return largest;
 }
 
+Result unmovable_answer(const Problem& p) {
+  Result out;
+  out.positions = p.positions;
+  out.distortion = field_deviation(p, p.positions);
+  out.lower_bound = out.distortion.size() ? out.distortion.maxCoeff() : 0.0;
+  out.message = "nothing to optimise: every element has all its vertices fixed";
+  return out;
+}
+
 }  // namespace strictmin

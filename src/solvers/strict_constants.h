@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "strictmin/problem/problem.h"
+#include "strictmin/solvers/result.h"
 
 namespace strictmin {
 
@@ -18,5 +19,8 @@ std::vector<char> movable_elements(const Problem& p);
 // where the free elements reach 1.035). Returns the largest constant value, -inf when none:
 // the minimum over maps of the largest distortion is at least that.
 double bound_constant_elements(const Problem& p, const std::vector<char>& movable, Eigen::VectorXd& bounds);
+
+// The answer when no element can move: the problem's map, solved, its maximum as exact bound.
+Result unmovable_answer(const Problem& p);
 
 }  // namespace strictmin

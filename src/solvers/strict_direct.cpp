@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <string>
 
-#include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/subproblem.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
@@ -137,10 +136,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   std::string stop_message;  // a level that ended the run
   double k = INFINITY;
   out.positions = p.positions;
-  if (free_left == 0) {  // nothing moves: the problem's map is the answer, its maximum exact
-    out.distortion = field_deviation(p, p.positions);
-    out.lower_bound = out.distortion.size() ? out.distortion.maxCoeff() : 0.0;
-  }
+  if (free_left == 0) return unmovable_answer(p);
   Problem level = p;
   // Pinning needs the field deviation's strict convexity (not the local-global or frame
   // levels' measures); the problem's own equalities (seams) are written on each level.

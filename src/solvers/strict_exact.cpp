@@ -33,7 +33,6 @@
 #include "option_check.h"
 #include "solvers/strict_constants.h"
 #include "solvers/strict_pinning.h"
-#include "strictmin/measures/field_deviation.h"
 
 namespace strictmin {
 namespace {
@@ -68,13 +67,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   LinfOptions linf = linf_options;
   linf.progress = nullptr;
   Result out;
-  // With no movable element nothing is decided: the problem's map is the answer.
-  out.positions = p.positions;
-  out.distortion = field_deviation(p, p.positions);
-  if (undecided == 0) {
-    out.lower_bound = out.distortion.size() ? out.distortion.maxCoeff() : 0.0;
-    out.message = "nothing to optimise: every element has all its vertices fixed";
-  }
+  if (undecided == 0) return unmovable_answer(p);
   int solves = 0, fixed_total = 0;
   // Essential elements are pinned (strict_pinning.h) on problems without equalities: every
   // solve after the first runs on the level's problem, from the map in hand.

@@ -15,9 +15,7 @@ Result run_conformal_method(const Problem& problem, const Eigen::MatrixXd& start
   c.measure = measure;
   c.bisection_tolerance = std::max(options.linf.gap_tolerance, 1e-10);
   c.max_frame_iterations = options.frame_iterations;
-  // --max-iterations caps each feasibility program's interior-point iterations; unset (linf's
-  // default), the programs keep their own cap.
-  if (options.linf.max_iterations != LinfOptions{}.max_iterations) c.max_ipm_iterations = options.linf.max_iterations;
+  c.max_ipm_iterations = options.linf.max_iterations;  // --max-iterations: each program's cap
   c.progress = options.linf.progress;
   // 2. The method.
   switch (options.method) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 #include "strictmin/problem/parts.h"
 #include "strictmin/problem/surface_deformation.h"
 #include "strictmin/solvers/l2.h"
@@ -34,11 +35,11 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
   if (surface && (options.no_flips || options.local_global.no_flips || options.solver.relax.no_flips))
     throw InputError("--no-flips is for planar triangle meshes and tet meshes; a triangle surface in 3D has no "
                      "orientation to keep (each triangle's 3x2 Jacobian has no determinant sign)");
-  // Targets within the sizes a mesh may have (mesh/validate.h): a handle at 1e200 made every
-  // distortion overflow to inf, reported by l2 as solved.
+  // Targets within the sizes a mesh may have (kLargestSize, mesh/validate.h): a handle at 1e200
+  // made every distortion overflow to inf, reported by l2 as solved.
   for (const Handle& h : handles)
     for (Eigen::Index k = 0; k < h.position.size(); ++k)
-      if (!(std::abs(h.position(k)) <= 1e150)) {
+      if (!(std::abs(h.position(k)) <= kLargestSize)) {
         char value[32];
         std::snprintf(value, sizeof value, "%g", h.position(k));
         throw InputError("the handle of vertex " + std::to_string(h.vertex) + " has the coordinate " + value +

@@ -1,7 +1,6 @@
 // Global seamless parametrization: the phases, each a named step (docs/gparam.md).
 #include "strictmin/tasks/gparam.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,22 +25,12 @@ void check_options(const GParamOptions& o) {
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
 }
 
-double surface_area(const Mesh& mesh) {
-  double area = 0;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::RowVectorXd u = mesh.V.row(mesh.F(f, 1)) - mesh.V.row(mesh.F(f, 0)),
-                             v = mesh.V.row(mesh.F(f, 2)) - mesh.V.row(mesh.F(f, 0));
-    area += 0.5 * std::sqrt(std::max(0.0, u.squaredNorm() * v.squaredNorm() - u.dot(v) * u.dot(v)));
-  }
-  return area;
-}
-
 // The texture coordinates are the map divided by the edge length: an edge length far out of
 // the surface's scale (sqrt of its area) makes them overflow or lose every digit. Refused
-// before any work, naming the flag and the scale.
-void check_edge_length_scale(const Mesh& mesh, const GParamOptions& o) {
+// before the solve, naming the flag and the scale.
+void check_edge_length_scale(const GParamOptions& o, double area) {
   if (!(o.edge_length > 0)) return;  // --quads: sqrt(area / quads), in scale by construction
-  const double scale = std::sqrt(surface_area(mesh));
+  const double scale = std::sqrt(area);
   if (o.edge_length >= 1e-9 * scale && o.edge_length <= 1e9 * scale) return;
   char why[200];
   std::snprintf(why, sizeof why,
@@ -168,11 +157,11 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   const auto t0 = std::chrono::steady_clock::now();
   out.graph = surface_graph(mesh, source);
   out.graph_time_s = seconds_since(t0);
-  check_edge_length_scale(mesh, o);  // on the checked surface
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   compute_field(mesh, o, out);
   compute_cut(mesh, o, out);
   const double area = out.frames.area.sum();
+  check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
   solve(o, out);
   measure(mesh, o, out);

@@ -7,6 +7,12 @@
 
 namespace strictmin {
 
+// A largest distortion at or below this is zero to rounding (distortions are dimensionless):
+// the map is exact, and a relative change or decrement of it is round-off. A surface's rest
+// frames, computed from 3D coordinates, leave about 1e-11 on an exact map (lion's interp frame
+// at t = 0: 6e-12). Local-global and lp stop there.
+constexpr double kZeroDistortion = 1e-10;
+
 // #E: the field deviation of every element for the map X (#V by image_dim).
 Eigen::VectorXd field_deviation(const Problem& problem, const Eigen::MatrixXd& X);
 // The field deviation of element e alone.

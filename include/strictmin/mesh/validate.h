@@ -26,6 +26,11 @@ namespace strictmin {
 void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std::string>* warnings = nullptr,
                    bool check_geometry = true);
 
+// Sizes (the largest side of the used vertices' bounding box; handle targets' coordinates)
+// the solvers take: beyond them squared and cubed lengths overflow or underflow and a solve
+// ends in numerical-error (measured: 1e-150 and 1e150 solve, 1e-170 and 1e170 do not).
+constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
+
 // Vertices used by no element.
 std::vector<int> unreferenced_vertices(const Mesh& mesh);
 

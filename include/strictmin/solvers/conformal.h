@@ -44,7 +44,7 @@ struct ConformalOptions {
   int max_frame_iterations = 50;
   // Per-element fixed bounds in measure units (direct's levels; empty or negative: free).
   Eigen::VectorXd element_bounds;
-  int max_ipm_iterations = 80;
+  int max_ipm_iterations = 100;  // each feasibility program's cap (LinfOptions::max_iterations's default)
   // iso: each frame iteration's least level by one cone program (minimize S with the rotated
   // cone v_T S >= 1, docs/measures.md "iso in one program") instead of a bisection; false:
   // bisect as qc does (the two agree to the tolerance; kept for comparison).
