@@ -151,8 +151,28 @@ void check_output_paths(const OutputOptions& out) {
   check_output_paths({{"--summary", out.summary}, {"--distortion", out.distortion}});
 }
 
+namespace {
+
+// One name for a path, whichever way it was written (relative, with .., through a link).
+std::filesystem::path path_key(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path key = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) key = fs::absolute(path).lexically_normal();
+  return key;
+}
+
+// Whether two paths name one file: the same name, or one file under two names (a hard link).
+bool same_file(const std::string& a, const std::string& b) {
+  if (path_key(a) == path_key(b)) return true;
+  std::error_code ec;
+  return std::filesystem::equivalent(a, b, ec) && !ec;
+}
+
+}  // namespace
+
 void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std::string, std::string>>& task_outputs,
-                       const std::string& report_dir) {
+                       const std::string& report_dir, const std::vector<std::pair<std::string, std::string>>& inputs) {
   namespace fs = std::filesystem;
   std::vector<std::pair<std::string, std::string>> all = task_outputs;
   all.push_back({"--summary", out.summary});
@@ -167,12 +187,13 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
   std::vector<std::pair<fs::path, std::string>> seen;
   for (const auto& [flag, path] : all) {
     if (path.empty() || path == "-") continue;
-    std::error_code ec;
-    fs::path key = fs::weakly_canonical(fs::absolute(path, ec), ec);
-    if (ec) key = fs::absolute(path).lexically_normal();
+    const fs::path key = path_key(path);
     for (const auto& [other, other_flag] : seen)
       if (other == key) throw InputError(flag + " " + path + ": " + other_flag + " writes the same file");
     seen.push_back({key, flag});
+    for (const auto& [what, input] : inputs)
+      if (!input.empty() && input != "-" && same_file(path, input))
+        throw InputError(flag + " " + path + ": is " + what + " (writing it would destroy it); choose another name");
   }
   std::error_code ec;
   if (!report_dir.empty() && fs::exists(report_dir, ec) && !fs::is_directory(report_dir, ec))

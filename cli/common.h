@@ -58,9 +58,12 @@ void check_output_paths(const std::vector<std::pair<std::string, std::string>>& 
 void check_output_paths(const OutputOptions& out);
 // Every output of a run at once, before any work: the checks above for the task's own
 // outputs and the common ones, no two flags naming one file (the later write would replace
-// the earlier), and the report folder (when given) not an existing file.
+// the earlier), no output naming one of the run's inputs (`inputs`: {what, path}, e.g.
+// {"the input mesh", a.mesh}; the write would destroy it), and the report folder (when given)
+// not an existing file.
 void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std::string, std::string>>& task_outputs,
-                       const std::string& report_dir);
+                       const std::string& report_dir,
+                       const std::vector<std::pair<std::string, std::string>>& inputs = {});
 // gparam's map is per-corner vt (f v/vt): only .obj holds it; any other extension is refused
 // before the solve (an .off or .ply would silently keep the input alone). param, whose map is
 // one vt per vertex, writes other formats without it, as documented.

@@ -26,7 +26,8 @@ struct DeformArgs {
 
 int run_deform(const DeformArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir);
+  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir,
+                    {{"the input mesh", a.mesh}, {"the --handles file", a.handles}});
   const auto threads = limit_threads(a.out.threads);
   DeformOptions options;
   options.solver = make_solver_options(a.solver, a.out);

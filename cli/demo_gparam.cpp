@@ -28,6 +28,7 @@ ReportSection write_gparam_demo_section(const std::string& dir, const Comparison
   in.measure = "field deviation";
   in.rest = &frame;
   fs::create_directories(fs::path(dir) / "gparam");
+  std::vector<GParamOutcome> outcomes;  // for the pictures drawn after the loop
   for (const Method m : {Method::L2, Method::Linf, Method::Relax}) {
     GParamOptions o;
     o.solver.method = m;
@@ -44,12 +45,9 @@ ReportSection write_gparam_demo_section(const std::string& dir, const Comparison
     write_outputs(files,
                   gparam_summary(frame, o, g, o.field_kind(), {"example:bulged-frame", name + ".obj", name + ".txt"}),
                   g.measured.distortion);
-    const auto pictures = write_gparam_pictures((fs::path(dir) / "gparam").string(), name, frame, g, options.scale);
     MethodRun run = method_run(name, g);
-    run.links = {{"summary", "gparam/" + name + ".json"},
-                 {"UV mesh", "gparam/" + name + ".obj"},
-                 {"seams and singularities", "gparam/" + pictures[0]},
-                 {"unit grid", "gparam/" + pictures[1]}};
+    run.links = {{"summary", "gparam/" + name + ".json"}, {"UV mesh", "gparam/" + name + ".obj"}};
+    outcomes.push_back(g);
     all_solved = all_solved && g.result.ok();
     char line[200];
     std::snprintf(line, sizeof line, "demo: gparam  %-7s max %.5f  L2 %.5f  flipped %d  seam error %.1e  %.2f s  %s",
@@ -57,6 +55,15 @@ ReportSection write_gparam_demo_section(const std::string& dir, const Comparison
                   g.solve_time_s, status_name(g.result.status).c_str());
     progress(output, line);
     in.runs.push_back(std::move(run));
+  }
+  // The seams-and-singularities pictures on the section's colour scale (known once every
+  // run is in).
+  const double scale = section_colour_scale(in.runs, options.scale);
+  for (std::size_t i = 0; i < in.runs.size(); ++i) {
+    const std::string& name = in.runs[i].method;
+    const auto pictures = write_gparam_pictures((fs::path(dir) / "gparam").string(), name, frame, outcomes[i], scale);
+    in.runs[i].links.push_back({"seams and singularities", "gparam/" + pictures[0]});
+    in.runs[i].links.push_back({"unit grid", "gparam/" + pictures[1]});
   }
   return write_section(dir, in, options);
 }

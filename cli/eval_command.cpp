@@ -58,7 +58,8 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
 
 int run_eval(const EvalArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir);
+  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir,
+                    {{"the rest mesh", a.rest}, {"the mapped mesh", a.mapped}});
   const auto threads = limit_threads(a.out.threads);
   std::vector<std::string> warnings;
   const Mesh rest = read_mesh(a.rest, &warnings);

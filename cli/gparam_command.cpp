@@ -34,6 +34,16 @@ struct GParamArgs {
   ReportArgs report;
 };
 
+// --field's built-in fields; anything else is a field file.
+bool is_field_name(const std::string& field) { return field == "smoothest" || field == "curvature" || field == "unit"; }
+
+// A number as given, for messages (%g: -1e-10, not std::to_string's -0.000000).
+std::string shown(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   GParamOptions o;
   const auto measure = parse_measure(a.measure);
@@ -42,14 +52,14 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   o.measure = *measure;
   if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
   if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
-    throw InputError("--edge-length must be a positive finite number, got " + std::to_string(a.edge_length));
+    throw InputError("--edge-length must be a positive finite number, got " + shown(a.edge_length));
   if (a.quads_given && a.quads <= 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
   if (a.edge_length_given) o.edge_length = a.edge_length;
   if (a.quads_given) o.quads = a.quads;
   o.curvature_field = a.field == "curvature";
   o.field_options.unit = a.field == "unit";
   if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
-    throw InputError("--curvature-alignment must be a positive number, got " + std::to_string(a.curvature_alignment));
+    throw InputError("--curvature-alignment must be a positive number, got " + shown(a.curvature_alignment));
   o.curvature_alignment = a.curvature_alignment;
   o.parallel_field = a.parallel;
   if (!a.cones.empty()) {
@@ -57,11 +67,11 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
     o.cones = read_cone_file(a.cones, mesh.num_vertices());
     o.field_source = a.cones;
   }
-  if (a.field != "smoothest" && a.field != "curvature" && a.field != "unit") {
+  if (!is_field_name(a.field)) {
     std::error_code ec;
     if (!std::filesystem::exists(a.field, ec))
       throw InputError("--field " + a.field + ": not smoothest, unit or curvature, and no such file");
-    o.field = read_field_file(a.field, mesh.num_elements());
+    o.field = read_field_file(a.field, mesh.num_elements(), &o.field_lines);
     o.field_source = a.field;
   }
   o.solver = make_solver_options(a.solver, a.out);
@@ -78,7 +88,9 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_run_outputs(a.out, {{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}},
-                    a.report.dir);
+                    a.report.dir,
+                    {{"the input mesh", a.mesh}, {"the --field file", is_field_name(a.field) ? "" : a.field},
+                     {"the --cones file", a.cones}});
   check_uv_output_path(a.output);
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
@@ -103,7 +115,7 @@ int run_gparam(const GParamArgs& a) {
     progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g)));
   progress(a.out, "gparam: max distortion " + std::to_string(g.measured.stats.max) + ", L2 " +
                       std::to_string(g.measured.stats.l2) + ", " + std::to_string(g.measured.stats.flipped) +
-                      " flipped, seam error " + std::to_string(g.seam_error) + ", " + status_name(g.result.status));
+                      " flipped, seam error " + shown(g.seam_error) + ", " + status_name(g.result.status));
   return exit_code_for(g.result.status);
 }
 

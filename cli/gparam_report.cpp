@@ -1,10 +1,21 @@
 #include "gparam_report.h"
 
+#include <cstdio>
 #include <filesystem>
 
 #include "strictmin/report/html_report.h"
 
 namespace strictmin::cli {
+namespace {
+
+// The largest transition violation as it is (3.3e-14; std::to_string printed 0.000000).
+std::string seam_error_text(double e) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", e);
+  return text;
+}
+
+}  // namespace
 
 GParamMarks gparam_marks(const Mesh& mesh, const GParamOutcome& g) {
   GParamMarks m;
@@ -51,17 +62,17 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
   std::error_code ec;
   std::filesystem::create_directories(a.dir, ec);
   const std::string method = summary.value("method", std::string("l2"));
-  const auto pictures = write_gparam_pictures(a.dir, method, mesh, g, a.scale);
+  MethodRun run = method_run(method, g);
+  const auto pictures = write_gparam_pictures(a.dir, method, mesh, g, section_colour_scale({run}, a.scale));
   SectionInput in;
   in.title = method_label(method) + " global parametrization of " + input_title(input);
   in.description = "Task gparam, measure " + summary.value("measure", std::string("fd")) + ", " +
                    std::to_string(mesh.num_elements()) + " triangles, Euler characteristic " +
                    std::to_string(g.graph.euler_characteristic()) + ", " + std::to_string(g.singular.size()) +
-                   " singularities (red dots +, blue dots -), " + std::to_string(g.cut.num_cut_edges) +
-                   " seam edges (dark red), seam error " + std::to_string(g.seam_error) + ".";
+                   " singularities (white dots: positive index, black dots: negative), " + std::to_string(g.cut.num_cut_edges) +
+                   " seam edges (dark red), seam error " + seam_error_text(g.seam_error) + ".";
   in.measure = measure_description(summary.value("measure", std::string("fd")));
   in.rest = &mesh;
-  MethodRun run = method_run(method, g);
   run.view_name = "view";
   run.links.emplace_back("surface with seams and singularities", pictures[0]);
   run.links.emplace_back("unit grid through the map", pictures[1]);

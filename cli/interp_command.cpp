@@ -83,7 +83,6 @@ int parse_pin(const std::string& pin) {
 
 int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_run_outputs(a.out, {}, a.report.dir);
   const auto threads = limit_threads(a.out.threads);
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);
@@ -108,6 +107,12 @@ int run_interp(const InterpArgs& a) {
   }
   if (!a.out.distortion.empty() && a.times.size() != 1)
     throw InputError("--distortion writes one frame: give a single --t value with it");
+  // Every frame's file with the other outputs, and none of them a pose (-o lion with
+  // t = 1 writes lion_1.obj, which may be the target).
+  std::vector<std::pair<std::string, std::string>> frame_outputs;
+  if (!a.output.empty())
+    for (double t : a.times) frame_outputs.push_back({"--output", frame_path(a.output, t, a.source)});
+  check_run_outputs(a.out, frame_outputs, a.report.dir, {{"the source pose", a.source}, {"the target pose", a.target}});
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
       print_local_global_progress(r, "  ");

@@ -47,7 +47,7 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
 
 int run_param(ParamArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir);
+  check_run_outputs(a.out, {{"--output", a.output}}, a.report.dir, {{"the input mesh", a.mesh}});
   const auto threads = limit_threads(a.out.threads);
   ParamOptions options;
   const auto measure = parse_measure(a.measure);

@@ -119,8 +119,29 @@ Eigen::MatrixXd read_positions(const std::string& path) {
   return V;
 }
 
+// Runs are compared (ranked, one colour scale, one histogram) only when they map one problem:
+// the same input file (wherever the summaries are: two "m.obj" in two folders are two
+// meshes), task, measure and element count, and the same handles (their count), field and
+// edge length where the task has them.
+// The input as one absolute path (a built-in example as its name).
+std::string input_location(const std::string& input, const std::string& file) {
+  if (input.empty() || input.rfind("example:", 0) == 0) return input;
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(resolve(input, file), ec), ec);
+  return ec ? input : resolved.string();
+}
+
+std::string problem_key(const nlohmann::json& s, const std::string& input, const std::string& file) {
+  std::string key = input_location(input, file);
+  for (const char* part : {"task", "measure", "elements", "handles", "field", "edge_length"})
+    key += std::string("\n") + (s.contains(part) ? s[part].dump() : std::string("-"));
+  return key;
+}
+
 struct LoadedRun {
-  std::string input;    // the summary's input (groups runs into sections)
+  std::string file;     // the summary file
+  std::string input;    // the summary's input (names the section)
+  std::string problem;  // what makes two runs rivals: one section each (problem_key)
   nlohmann::json summary;
   MethodRun run;
   std::shared_ptr<Mesh> rest;
@@ -144,7 +165,9 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   auto number = [&](const char* key) {
     return s.contains(key) && s[key].is_number() ? s[key].get<double>() : std::nan("");
   };
+  r.file = file;
   r.input = text("input");
+  r.problem = problem_key(s, r.input, file);
   const std::string mapped_path = resolve(text("map").empty() ? text("output") : text("map"), file);
   if (mapped_path.empty() && text("task") == "interp")
     throw InputError(file + ": an interp summary (several frames) is not one result; its frames are in interp's own "
@@ -226,16 +249,39 @@ std::string section_id(const std::string& input, std::set<std::string>& used) {
   return unique;
 }
 
+// The section's title: its input, and where several sections share the input (another
+// measure, task, field...), what sets this one apart.
+std::string section_title(const LoadedRun& run, const std::vector<LoadedRun>& all) {
+  const std::string where = input_location(run.input, run.file);
+  bool shared = false, elsewhere = false;
+  for (const auto& r : all) {
+    if (r.input != run.input || r.problem == run.problem) continue;
+    shared = true;
+    elsewhere = elsewhere || input_location(r.input, r.file) != where;
+  }
+  if (!shared) return input_title(run.input);
+  if (elsewhere) return where;  // two files of one name: the path tells them apart
+  const std::string title = input_title(run.input);
+  const auto& s = run.summary;
+  auto part = [&](const char* key) { return s.contains(key) && s[key].is_string() ? s[key].get<std::string>() : std::string(); };
+  std::string what = part("task");
+  if (!part("measure").empty()) what += (what.empty() ? "" : ", ") + std::string("measure ") + part("measure");
+  if (s.contains("handles") && s["handles"].is_number()) what += ", " + s["handles"].dump() + " handles";
+  if (!part("field").empty()) what += ", field " + part("field");
+  if (s.contains("edge_length") && s["edge_length"].is_number()) what += ", edge length " + s["edge_length"].dump();
+  return title + " (" + what + ")";
+}
+
 int run_report(ReportCommandArgs a) {
   a.runs.insert(a.runs.end(), a.positional.begin(), a.positional.end());
   if (a.runs.empty()) throw InputError("report needs at least one result: --run SUMMARY.json (written by --summary)");
   std::vector<LoadedRun> loaded;
   for (const auto& f : a.runs) loaded.push_back(load_run(f, a.out));
 
-  // Sections in order of first appearance of each input.
-  std::vector<std::string> inputs;
+  // Sections in order of first appearance of each problem (problem_key).
+  std::vector<std::string> problems;
   for (const auto& r : loaded)
-    if (std::find(inputs.begin(), inputs.end(), r.input) == inputs.end()) inputs.push_back(r.input);
+    if (std::find(problems.begin(), problems.end(), r.problem) == problems.end()) problems.push_back(r.problem);
   std::error_code ec;
   fs::create_directories(a.dir, ec);
   if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
@@ -252,15 +298,17 @@ int run_report(ReportCommandArgs a) {
   options.scale = a.scale;
   std::set<std::string> used_ids;
   bool all_solved = true;
-  for (const auto& input : inputs) {
+  for (const auto& problem : problems) {
+    const LoadedRun& first = *std::find_if(loaded.begin(), loaded.end(), [&](const LoadedRun& r) { return r.problem == problem; });
+    const std::string input = first.input;
     SectionInput in;
     in.id = section_id(input, used_ids);
-    in.title = input_title(input);
+    in.title = section_title(first, loaded);
     std::set<std::string> stems;
     std::string measure;
     for (std::size_t i = 0; i < loaded.size(); ++i) {
       LoadedRun& r = loaded[i];
-      if (r.input != input) continue;
+      if (r.problem != problem) continue;
       if (!in.rest && r.rest) {
         in.rest = r.rest.get();
         in.handles = r.handles;
@@ -271,7 +319,10 @@ int run_report(ReportCommandArgs a) {
         stem = r.run.method + "-" + std::to_string(k);
       stems.insert(stem);
       r.run.view_name = stem;
+      // Two runs of one method on one problem (other options): told apart by their files.
+      if (stem != r.run.method) r.run.label = method_label(r.run.method) + " (" + fs::path(r.file).filename().string() + ")";
       fs::create_directories(fs::path(a.dir) / in.id, ec);
+      if (ec) throw InputError("cannot create " + (fs::path(a.dir) / in.id).string() + ": " + ec.message());
       write_file_atomically((fs::path(a.dir) / in.id / (stem + ".json")).string(),
                             [&](std::ostream& os) { os << r.summary.dump(2) << '\n'; });
       r.run.links.emplace_back("summary", in.id + "/" + stem + ".json");

@@ -165,7 +165,7 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out,
                    s.fixed_total, s.solves);
       if (s.level_free_vertices >= 0) std::fprintf(stderr, "  moving vertices %d", s.level_free_vertices);
       if (s.pinned_total > 0) std::fprintf(stderr, "  pinned %d", s.pinned_total);
-      if (s.level_iterations > 0) std::fprintf(stderr, "  %d interior-point iterations", s.level_iterations);
+      if (s.level_iterations > 0) std::fprintf(stderr, "  %d %s", s.level_iterations, s.level_iteration_unit.c_str());
       std::fprintf(stderr, "  %.2f s\n", s.time_s);
     };
     o.direct.progress = strict_progress;

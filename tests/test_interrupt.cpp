@@ -5,9 +5,12 @@
 
 #include <atomic>
 
+#include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/mesh/polycube.h"
 #include "strictmin/solvers/local_global.h"
+#include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/method.h"
 #include "test_meshes.h"
 
@@ -36,6 +39,40 @@ TEST(Interrupt, EveryIterativeMethodStopsWhenTheFlagIsSet) {
   InterruptScope scope(stop);
   EXPECT_THROW(local_global(p, p.positions, with_method(Method::L2), LocalGlobalOptions{}), Interrupted);
   EXPECT_NO_THROW(solve_l2(p));  // one factorization: no iteration to stop at
+}
+
+// Global parametrization stops in its field phase (the Lanczos steps, the unit field's
+// steps) before any solve: a second or more on 100k faces that Ctrl-C did not stop before.
+TEST(Interrupt, GlobalParametrizationStopsInItsField) {
+  const Mesh cube = make_cube_surface(3);
+  for (bool unit : {false, true}) {
+    GParamOptions o;
+    o.solver.method = Method::L2;
+    o.field_options.unit = unit;
+    int phases = 0;
+    o.progress = [&](const std::string&) { ++phases; };
+    std::atomic<bool> stop{true};
+    InterruptScope scope(stop);
+    EXPECT_THROW(global_parametrize(cube, o), Interrupted) << (unit ? "unit" : "smoothest");
+    EXPECT_EQ(phases, 1) << "only the surface graph's line: the field stopped";
+  }
+}
+
+// The quasiconformal and isometric solves (their own cone programs, src/solvers/qc) stop too:
+// they ran to the end of their bisections through Ctrl-C and SIGTERM before.
+TEST(Interrupt, QuasiconformalAndIsometricSolvesStop) {
+  const Problem p = test_support::figure2(6, 0.3);
+  for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
+    ConformalOptions o;
+    o.measure = m;
+    std::atomic<bool> stop{true};
+    InterruptScope scope(stop);
+    EXPECT_THROW(solve_conformal_linf(p, p.positions, o), Interrupted) << measure_name(m);
+    EXPECT_THROW(solve_conformal_direct(p, p.positions, o, DirectOptions{}), Interrupted) << measure_name(m);
+    std::atomic<bool> go{false};
+    InterruptScope clear(go);
+    EXPECT_NO_THROW(solve_conformal_linf(p, p.positions, o)) << measure_name(m);
+  }
 }
 
 TEST(Interrupt, AClearFlagOrNoScopeChangesNothing) {

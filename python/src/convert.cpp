@@ -55,7 +55,9 @@ py::dict step_dict(const StrictStep& s) {
   d["fixed_total"] = s.fixed_total;
   d["solves"] = s.solves;
   d["level_iterations"] = s.level_iterations;
+  d["level_iteration_unit"] = s.level_iteration_unit;
   d["level_free_vertices"] = s.level_free_vertices;
+  d["pinned_total"] = s.pinned_total;
   d["time_s"] = s.time_s;
   return d;
 }

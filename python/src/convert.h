@@ -25,7 +25,7 @@ pybind11::object to_python(const nlohmann::json& j);
 // (which solver: "linf", "lp", "irls", "relax", "local-global").
 pybind11::dict record_dict(const IterationRecord& r, const char* stage);
 // A strict-minimizer level (direct, exact): step, k, fixed_now, fixed_total, solves,
-// level_iterations, level_free_vertices, time_s, stage "strict".
+// level_iterations (counted in level_iteration_unit), level_free_vertices, pinned_total, time_s, stage "strict".
 pybind11::dict step_dict(const StrictStep& s);
 
 // A mesh from V (#V by 2 or 3) and F (#F by 3 or 4), validated like a file's mesh

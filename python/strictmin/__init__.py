@@ -98,8 +98,10 @@ def _format_record(r):
                 f"  solves {r['solves']}")
         if r["level_free_vertices"] >= 0:
             line += f"  moving vertices {r['level_free_vertices']}"
+        if r.get("pinned_total", 0) > 0:
+            line += f"  pinned {r['pinned_total']}"
         if r["level_iterations"] > 0:
-            line += f"  {r['level_iterations']} interior-point iterations"
+            line += f"  {r['level_iterations']} {r.get('level_iteration_unit', 'interior-point iterations')}"
         return line + f"  {r['time_s']:.2f} s"
     labels = {"linf": "  linf  iter", "lp": "  lp    iter", "irls": "  irls  iter", "relax": "  relax sweep",
               "local-global": "local-global iter"}

@@ -1,4 +1,5 @@
 // The smoothest cross field (Knoeppel et al. 2013) and face frames (docs/gparam.md).
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/field/cross_field.h"
 
 #include <algorithm>
@@ -116,6 +117,7 @@ void lower_among_unit_fields(const Mesh& mesh, const SurfaceGraph& g, const Face
   double best = out.energy;
   int since_progress = 0;
   for (int step = 1; step <= options.unit_max_steps && since_progress < options.unit_patience; ++step) {
+    check_interrupt();  // solvers/interrupt.h
     u = u.cwiseProduct(sM);
     cholesky.solve_in_place(u);
     u = normalize_per_face(u);
@@ -272,21 +274,30 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   return out;
 }
 
-CrossField cross_field_from_directions(const Eigen::MatrixXd& d, const FaceFrames& fr, const std::string& source) {
+CrossField cross_field_from_directions(const Eigen::MatrixXd& d, const FaceFrames& fr, const std::string& source,
+                                      const std::vector<long>& lines) {
   const Eigen::Index F = fr.x.rows();
   const std::string name = source.empty() ? std::string("field") : source;
   if (d.rows() != F || d.cols() != 3)
     throw InputError(name + ": " + std::to_string(d.rows()) + " directions for " + std::to_string(F) +
-                     " faces (one 3D direction per face, one per line)");
+                     " faces (one 3D direction per face" + (lines.empty() ? ")" : ", one per line)"));
   CrossField out;
   out.u.resize(F);
   for (Eigen::Index f = 0; f < F; ++f) {
-    const Eigen::Vector3d v = d.row(f).transpose();
-    const std::string where = located(name, static_cast<long>(f) + 1, "face " + std::to_string(f) + ": ");
-    if (!v.allFinite()) throw InputError(where + "the direction is not finite");
+    const std::string face = "face " + std::to_string(f) + ": ";
+    const std::string where = static_cast<Eigen::Index>(lines.size()) == F
+                                  ? located(name, lines[static_cast<size_t>(f)], face)
+                                  : name + ": " + face;
+    const Eigen::Vector3d given = d.row(f).transpose();
+    if (!given.allFinite()) throw InputError(where + "the direction is not finite");
+    // Scaled to its largest component first: 1e308 or 1e-320 are directions too (their norm
+    // overflows or underflows).
+    const double largest = given.cwiseAbs().maxCoeff();
+    if (largest == 0) throw InputError(where + "the direction is zero");
+    const Eigen::Vector3d v = given / largest;
     const double a = v.dot(row3(fr.x, static_cast<int>(f))), b = v.dot(row3(fr.y, static_cast<int>(f)));
-    if (!(std::hypot(a, b) > 1e-9 * v.norm()) || v.norm() == 0)
-      throw InputError(where + "the direction is zero or perpendicular to the face");
+    if (!(std::hypot(a, b) > 1e-9 * v.norm()))
+      throw InputError(where + "the direction is perpendicular to the face");
     out.u(f) = std::polar(1.0, 4.0 * std::atan2(b, a));
   }
   return out;

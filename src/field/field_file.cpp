@@ -12,11 +12,12 @@
 
 namespace strictmin {
 
-Eigen::MatrixXd read_field_file(const std::string& path, int num_faces) {
+Eigen::MatrixXd read_field_file(const std::string& path, int num_faces, std::vector<long>* lines) {
   std::istringstream in(io_detail::read_text_file(path));  // "cannot read PATH: the reason"
   std::vector<double> values;
   std::string text;
   long line = 0, rows = 0;
+  if (lines) lines->clear();
   while (std::getline(in, text)) {
     ++line;
     const size_t hash = text.find('#');
@@ -28,17 +29,19 @@ Eigen::MatrixXd read_field_file(const std::string& path, int num_faces) {
       char* end = nullptr;
       const double v = std::strtod(word.c_str(), &end);
       if (end == word.c_str() || *end != '\0')
-        throw InputError(located(path, line, "'" + word + "' is not a number"));
+        throw InputError(located(path, line, "face " + std::to_string(rows) + ": " + io_detail::quote_token(word) + " is not a number"));
       row.push_back(v);
     }
     if (row.empty()) continue;
     if (row.size() != 3)
-      throw InputError(located(path, line, "expected 3 numbers (a direction in the face's plane), found " +
+      throw InputError(located(path, line, "face " + std::to_string(rows) +
+                                               ": expected 3 numbers (a direction in the face's plane), found " +
                                                std::to_string(row.size())));
     ++rows;
     if (rows > num_faces)
       throw InputError(located(path, line, "more directions than the mesh's " + std::to_string(num_faces) + " faces"));
     values.insert(values.end(), row.begin(), row.end());
+    if (lines) lines->push_back(line);
   }
   if (rows != num_faces)
     throw InputError(path + ": " + std::to_string(rows) + " directions for " + std::to_string(num_faces) +

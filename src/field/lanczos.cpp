@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "strictmin/solvers/interrupt.h"
+
 namespace strictmin {
 
 LanczosResult lanczos_smallest(const HermitianCholesky& A, const Eigen::VectorXd& mass, const Eigen::VectorXcd& x0,
@@ -21,6 +23,7 @@ LanczosResult lanczos_smallest(const HermitianCholesky& A, const Eigen::VectorXd
   LanczosResult out;
   Eigen::VectorXcd w(x0.size()), mw(x0.size());  // kept: no allocation per step
   for (int j = 0; j < max_steps; ++j) {
+    check_interrupt();  // solvers/interrupt.h
     w = m.cwiseProduct(V.col(j));
     A.solve_in_place(w);
     ++out.steps;

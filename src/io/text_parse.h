@@ -37,6 +37,9 @@ inline std::string read_text_file(const std::string& path) {
   const int error = errno;
   std::fclose(file);
   if (failed) throw InputError("cannot read " + path + ": " + std::strerror(error));
+  // A UTF-8 byte-order mark (some Windows editors write one) is not part of the first line:
+  // left in, it made the first statement unknown ("\xEF\xBB\xBFv" dropped a vertex).
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   return text;
 }
 

@@ -19,6 +19,21 @@ namespace fs = std::filesystem;
 
 bool drawn_as_svg(const Mesh& m) { return m.element_type() == ElementType::Triangle && m.is_planar(); }
 
+// Whether a handle moves its vertex: beyond a millionth of the mesh's size (a handle file's
+// full digits against an OBJ's six decimals differ by ~1e-7 and hold the vertex still), over
+// the coordinates both have (a planar OBJ's z = 0 against 'vertex x y' handles).
+bool handle_moves(const Mesh& rest, const Handle& h, double mesh_size) {
+  const Eigen::Index n = std::min<Eigen::Index>(h.position.size(), rest.V.cols());
+  const Eigen::VectorXd from = rest.V.row(h.vertex).head(n).transpose();
+  return (h.position.head(n) - from).norm() > 1e-6 * mesh_size;
+}
+
+// The length of the mesh's bounding-box diagonal.
+double mesh_size(const Mesh& m) {
+  if (m.V.rows() == 0) return 0;
+  return (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
+}
+
 // Bounding box of all the meshes' vertices (used by their elements), as 3D.
 void frame(const std::vector<const Mesh*>& meshes, Eigen::Vector3d* lo, Eigen::Vector3d* hi) {
   lo->setConstant(std::numeric_limits<double>::infinity());
@@ -45,6 +60,14 @@ double auto_colour_scale(double k) {
   return 10 * p;
 }
 
+double section_colour_scale(const std::vector<MethodRun>& runs, double requested) {
+  if (requested > 0) return requested;
+  double k = std::numeric_limits<double>::infinity();
+  for (const auto& r : runs)
+    if (r.distortion.size() > 0 && std::isfinite(r.distortion.maxCoeff())) k = std::min(k, r.distortion.maxCoeff());
+  return auto_colour_scale(k);
+}
+
 ReportSection write_section(const std::string& report_dir, const SectionInput& in, const ComparisonOptions& o) {
   const fs::path folder = in.id.empty() ? fs::path(report_dir) : fs::path(report_dir) / in.id;
   std::error_code ec;
@@ -58,13 +81,7 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
   out.measure = in.measure;
   out.alternatives = in.alternatives;
 
-  double scale = o.scale;
-  if (!(scale > 0)) {
-    double k = std::numeric_limits<double>::infinity();
-    for (const auto& r : in.runs)
-      if (r.distortion.size() > 0 && std::isfinite(r.distortion.maxCoeff())) k = std::min(k, r.distortion.maxCoeff());
-    scale = auto_colour_scale(k);
-  }
+  const double scale = section_colour_scale(in.runs, o.scale);
   out.scale = scale;
 
   std::vector<const Mesh*> meshes;
@@ -103,10 +120,11 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
     const Mesh& rest = *in.rest;
     if (drawn_as_svg(rest)) {
       SvgViewOptions s = svg;
+      const double size = mesh_size(rest);
       for (const Handle& h : in.handles) {
         if (h.vertex < 0 || h.vertex >= rest.num_vertices() || h.position.size() < 2) continue;
         const Eigen::Vector2d from = rest.V.row(h.vertex).head<2>().transpose(), to = h.position.head<2>();
-        if ((to - from).norm() > 1e-12) s.arrows.emplace_back(from, to);
+        if (handle_moves(rest, h, size)) s.arrows.emplace_back(from, to);
         else s.markers.push_back(from);
       }
       const std::vector<Rgb> grey(rest.num_elements(), Rgb{214, 220, 228});
@@ -121,12 +139,13 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
     }
     if (!in.handles.empty()) {
       int moved = 0;
+      const double size = mesh_size(rest);
       for (const Handle& h : in.handles)
-        if (h.vertex >= 0 && h.vertex < rest.num_vertices() && h.position.size() == rest.dim() &&
-            (h.position.transpose() - rest.V.row(h.vertex)).norm() > 1e-12)
-          ++moved;
+        if (h.vertex >= 0 && h.vertex < rest.num_vertices() && handle_moves(rest, h, size)) ++moved;
+      const bool one = rest.num_elements() == 1;
       out.input_caption = std::to_string(rest.num_elements()) +
-                          (rest.element_type() == ElementType::Tetrahedron ? " tetrahedra, " : " triangles, ") +
+                          (rest.element_type() == ElementType::Tetrahedron ? (one ? " tetrahedron, " : " tetrahedra, ")
+                                                                           : (one ? " triangle, " : " triangles, ")) +
                           std::to_string(in.handles.size() - moved) + " fixed and " + std::to_string(moved) +
                           " moved handle vertices" + (drawn_as_svg(rest) ? " (dots: fixed; arrows: moved)." : ".");
     }
@@ -185,6 +204,9 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
       e.extra_pictures.emplace_back("UV layout", joined(in.id, stem + "-uv.svg"));
       CheckerboardOptions c;
       c.raster = png.raster;
+      // A seamed (global) parametrization, UV per corner: its unit squares, the grid it is for
+      // (the checks still jump across seams by the translations' fractional parts: not rounded).
+      if (r.mapped.UV.rows() != r.mapped.V.rows()) c.period = 1;
       write_png((folder / (stem + "-checker.png")).string(), render_checkerboard(r.mapped, c));
       e.extra_pictures.emplace_back("checkerboard texture", joined(in.id, stem + "-checker.png"));
     }

@@ -32,7 +32,9 @@ double histogram_upper(const std::vector<const Eigen::VectorXd*>& distortions, d
   for (const Eigen::VectorXd* d : distortions)
     for (Eigen::Index i = 0; i < d->size(); ++i)
       if (std::isfinite((*d)(i))) top = std::max(top, (*d)(i));
-  if (!(top > 0)) return 1.0;
+  // Distortion at rounding level (1e-14 on an exact map) is zero: an axis up to 2e-14 drew
+  // its noise as a full histogram.
+  if (!(top > kZeroDistortionShown)) return 1.0;
   const double p = std::pow(10.0, std::floor(std::log10(top)));
   for (double m : {1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
     if (m * p >= top * (1 + 1e-12)) return m * p;

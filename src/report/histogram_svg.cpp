@@ -79,7 +79,13 @@ std::string histogram_svg(const std::vector<HistogramSeries>& series, const Hist
 
   const double W = o.width, H = o.height;
   const double legend_h = o.legend ? 8 + 18.0 * series.size() : 0;
-  const double top = o.title.empty() ? 12 : 34, left = W < 400 ? 58 : 74, right = W - 14;
+  const double step = tick_step(hi, 5);
+  // Room on the left for the longest tick label (4e+06 ran into the axis title) and on the
+  // right for half of the last decade's label (100% was cut).
+  std::size_t tick_chars = 1;
+  for (double v = 0; v <= hi * (1 + 1e-9); v += step) tick_chars = std::max(tick_chars, markup::number(v, 3).size());
+  const double top = o.title.empty() ? 12 : 34, right = W - 20;
+  const double left = std::max(W < 400 ? 58.0 : 74.0, 40 + 6.5 * static_cast<double>(tick_chars));
   const double bottom = H - 46 - legend_h;
   auto X = [&](double percent) {
     const double e = std::clamp(std::log10(std::max(percent, 1e-300)), lo_exp, hi_exp);
@@ -100,7 +106,6 @@ std::string histogram_svg(const std::vector<HistogramSeries>& series, const Hist
   for (double e = lo_exp; e <= hi_exp + 1e-9; e += 1)
     svg << "<line x1=\"" << coord(X(std::pow(10.0, e))) << "\" y1=\"" << coord(top) << "\" x2=\""
         << coord(X(std::pow(10.0, e))) << "\" y2=\"" << coord(bottom) << "\"/>\n";
-  const double step = tick_step(hi, 5);
   for (double v = step; v <= hi * (1 + 1e-9); v += step)
     svg << "<line x1=\"" << coord(left) << "\" y1=\"" << coord(Y(v)) << "\" x2=\"" << coord(right) << "\" y2=\""
         << coord(Y(v)) << "\"/>\n";
@@ -149,18 +154,31 @@ std::string histogram_svg(const std::vector<HistogramSeries>& series, const Hist
   svg << "<polyline fill=\"none\" stroke=\"#000000\" stroke-width=\"1\" points=\"" << coord(left) << ',' << coord(top)
       << ' ' << coord(left) << ',' << coord(bottom) << ' ' << coord(right) << ',' << coord(bottom) << "\"/>\n";
   svg << "<g font-size=\"11\" fill=\"#000000\">\n";
-  for (double e = lo_exp; e <= hi_exp + 1e-9; e += 1)
+  // Every decade's label where they fit (about 40 px each), else every other one from the top.
+  const double decade_px = (right - left) / std::max(1.0, hi_exp - lo_exp);
+  const int label_every = decade_px >= 40 ? 1 : 2;
+  for (double e = lo_exp; e <= hi_exp + 1e-9; e += 1) {
+    if (static_cast<int>(std::lround(hi_exp - e)) % label_every != 0) continue;
     svg << "<text x=\"" << coord(X(std::pow(10.0, e))) << "\" y=\"" << coord(bottom + 14)
         << "\" text-anchor=\"middle\">" << markup::number(std::pow(10.0, e), 3) << "%</text>\n";
+  }
   for (double v = 0; v <= hi * (1 + 1e-9); v += step)
     svg << "<text x=\"" << coord(left - 15) << "\" y=\"" << coord(Y(v) + 4) << "\" text-anchor=\"end\">"
         << markup::number(v, 3) << "</text>\n";
   svg << "</g>\n";
+  // Axis titles sized to their room (a 290 px card cut "(log scale)"; interp's long distortion
+  // label ran past both ends of its axis): about 0.55 em a character.
+  const std::string x_title =
+      right - left >= 0.55 * 12 * 48 ? "share of the area per distortion bin (log scale)" : "share of the area per bin (log)";
+  auto fitting_size = [](double room, std::size_t chars) {
+    return std::clamp(room / (0.55 * static_cast<double>(std::max<std::size_t>(chars, 1))), 7.0, 12.0);
+  };
   svg << "<text x=\"" << coord(0.5 * (left + right)) << "\" y=\"" << coord(bottom + 32)
-      << "\" text-anchor=\"middle\" font-size=\"12\">share of the area per distortion bin (log scale)</text>\n";
+      << "\" text-anchor=\"middle\" font-size=\"" << coord(fitting_size(right - left + 20, x_title.size())) << "\">"
+      << x_title << "</text>\n";
   svg << "<text transform=\"translate(15," << coord(0.5 * (top + bottom)) << ") rotate(-90)\" text-anchor=\"middle\" "
-         "font-size=\"12\">"
-      << escape(o.value_label) << "</text>\n";
+         "font-size=\""
+      << coord(fitting_size(bottom - top + 24, o.value_label.size())) << "\">" << escape(o.value_label) << "</text>\n";
 
   // Legend (below the plot).
   if (o.legend) {

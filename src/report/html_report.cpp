@@ -7,6 +7,7 @@
 
 #include "markup.h"
 #include "strictmin/io/atomic_file.h"
+#include "strictmin/report/histogram.h"
 #include "strictmin/report/strict_order.h"
 
 namespace strictmin {
@@ -76,6 +77,15 @@ std::string seconds(double t) {
   return number(t, 3) + " s";
 }
 
+// The heading a method's map goes by in cards, notes and verdicts: its label, and when its
+// solve did not meet its own criterion, that it did not (a capped L-infinity "losing" to
+// relax read as L-infinity losing on its own criterion).
+std::string shown_name(const MethodEntry& m) {
+  std::string name = m.label.empty() ? method_label(m.name) : m.label;
+  if (!m.status.empty() && m.status != "solved") name += " (not solved: " + m.status + ")";
+  return name;
+}
+
 bool comparable(const MethodEntry& a, const MethodEntry& b) {
   return a.distortion.size() > 0 && a.distortion.size() == b.distortion.size() &&
          a.weights.size() == a.distortion.size();
@@ -90,7 +100,7 @@ double least_maximum(const ReportSection& s) {
 }
 
 void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
-  const std::string label = m.label.empty() ? method_label(m.name) : m.label;
+  const std::string label = shown_name(m);
   h << "<div class=\"card\"><h3 style=\"border-left-color:" << escape(m.colour.empty() ? "#888888" : m.colour)
     << "\">" << escape(label) << "</h3>\n";
   if (!m.picture.empty())
@@ -107,7 +117,8 @@ void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
     h << "<tr><td>certified lower bound (no map does better)</td><td class=\"v\">" << number(m.lower_bound, 5)
       << "</td></tr>\n";
   h << "<tr><td>L2 distortion (area-weighted RMS)</td><td class=\"v\">" << number(m.stats.l2, 4) << "</td></tr>\n";
-  if (std::isfinite(kstar) && kstar > 0 && m.distortion.size() == m.weights.size() && m.distortion.size() > 0)
+  if (std::isfinite(kstar) && kstar > kZeroDistortionShown && m.distortion.size() == m.weights.size() &&
+      m.distortion.size() > 0)
     h << "<tr><td>area with distortion \u2265 " << number(0.9 * kstar, 3) << " (90% of the least max)</td><td class=\"v\">"
       << number(area_percent_at_or_above(m.distortion, m.weights, 0.9 * kstar), 3) << "%</td></tr>\n";
   h << "<tr><td>flipped elements</td><td class=\"v\">" << m.stats.flipped << " of " << m.stats.elements
@@ -136,12 +147,19 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
     for (const auto& m : s.methods)
       if (std::isfinite(m.lower_bound)) bound = std::max(bound, m.lower_bound);
     if (std::isfinite(bound))
-      h << "<li>No map with these handles has a maximum distortion below " << number(bound, 5)
+      h << "<li>No map of this problem has a maximum distortion below " << number(bound, 5)
         << " (the certified lower bound of the L\u221e solve).</li>\n";
     for (const auto& m : s.methods) {
-      const std::string label = m.label.empty() ? method_label(m.name) : m.label;
+      const std::string label = shown_name(m);
       const bool have = m.distortion.size() > 0 && m.distortion.size() == m.weights.size();
-      if (!std::isfinite(m.stats.max)) {
+      if (m.stats.max <= kZeroDistortionShown) {
+        // An exact map (zero distortion to rounding): no ratio to the least maximum, no share.
+        h << "<li><b>" << escape(label) << "</b>: no distortion (maximum " << number(m.stats.max, 3)
+          << ", zero to rounding).</li>\n";
+      } else if (kstar <= kZeroDistortionShown) {
+        h << "<li><b>" << escape(label) << "</b>: maximum " << number(m.stats.max, 4)
+          << ", where another map shown has no distortion.</li>\n";
+      } else if (!std::isfinite(m.stats.max)) {
         h << "<li><b>" << escape(label) << "</b>: some elements are infinitely distorted (flipped).</li>\n";
       } else if (m.stats.max > kstar * (1 + 1e-3)) {
         h << "<li><b>" << escape(label) << "</b>: maximum " << number(m.stats.max, 4) << ", "
@@ -163,7 +181,7 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
   std::vector<std::string> verdicts;
   std::vector<const MethodEntry*> ranked;  // the comparable ones
   bool all_equivalent = true;
-  auto name = [](const MethodEntry& m) { return m.label.empty() ? method_label(m.name) : m.label; };
+  auto name = [](const MethodEntry& m) { return shown_name(m); };
   for (std::size_t i = 1; i < s.methods.size(); ++i) {
     const MethodEntry &a = s.methods[i - 1], &b = s.methods[i];
     if (!comparable(a, b)) continue;

@@ -354,6 +354,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     // declared infeasible).
     if (o.shapes.size() != 0) direct.moving_rings = 0;
     p.positions = out.positions;  // the first level starts here
+    direct.level_iteration_unit = "local-global steps";
     direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
       SolverOptions inner;
       inner.method = Method::Linf;

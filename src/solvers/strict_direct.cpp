@@ -254,6 +254,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
       info.fixed_total = fixed_total;
       info.solves = step;
       info.level_iterations = r.iterations;
+      info.level_iteration_unit = options.level_iteration_unit;
       info.pinned_total = pins.count();
       info.time_s = rec.time_s;
       options.progress(info);

@@ -8,6 +8,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/report/stats.h"
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
@@ -66,7 +67,7 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   const auto t0 = std::chrono::steady_clock::now();
   out.frames = face_frames(mesh, out.graph);
   if (o.field) {
-    out.field = cross_field_from_directions(*o.field, out.frames, o.field_source);
+    out.field = cross_field_from_directions(*o.field, out.frames, o.field_source, o.field_lines);
     out.field.energy = field_energy(out.field.u, mesh, out.graph, out.frames);
   } else if (o.cones) {
     out.field = cone_cross_field(mesh, out.graph, out.frames, *o.cones, o.field_options, o.field_source);
@@ -159,7 +160,9 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   out.graph_time_s = seconds_since(t0);
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   compute_field(mesh, o, out);
+  check_interrupt();  // solvers/interrupt.h: between the phases (the field's loops check too)
   compute_cut(mesh, o, out);
+  check_interrupt();
   const double area = out.frames.area.sum();
   check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);

@@ -152,6 +152,35 @@ class Deform(unittest.TestCase):
         self.assertIn("is a file, not a folder", p.stderr)
         self.assertFalse(os.path.exists(out) or os.path.exists(summary))
 
+    def test_an_output_that_names_an_input_is_refused_and_the_input_kept(self):
+        # --summary mesh.obj replaced the input mesh with JSON (exit 0); the same for every
+        # output flag of every task, through another spelling of the path or a hard link.
+        square = "v 0 0\nv 1 0\nv 1 1\nv 0 1\nv 0.5 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
+        mesh = write(os.path.join(self.dir, "m.obj"), square)
+        handles = write(os.path.join(self.dir, "h.txt"), "0 0 0\n2 1.2 1\n")
+        target = write(os.path.join(self.dir, "m_1.obj"), square)
+        link = os.path.join(self.dir, "link.obj")
+        os.link(mesh, link)
+        cases = [
+            (["deform", mesh, "--handles", handles, "--summary", mesh], "--summary", "the input mesh"),
+            (["deform", mesh, "--handles", handles, "-o", os.path.join(self.dir, ".", "m.obj")], "--output",
+             "the input mesh"),
+            (["deform", mesh, "--handles", handles, "--distortion", handles], "--distortion", "the --handles file"),
+            (["deform", mesh, "--handles", handles, "-o", link], "--output", "the input mesh"),
+            (["eval", mesh, target, "--summary", target], "--summary", "the mapped mesh"),
+            (["interp", mesh, target, "--t", "0.5,1", "-o", os.path.join(self.dir, "m")], "--output", "the target pose"),
+        ]
+        for args, flag, what in cases:
+            with self.subTest(args=args):
+                p = run(*args, check_code=1)
+                self.assertIn(flag, p.stderr)
+                self.assertIn("is " + what, p.stderr)
+                for path in (mesh, target):
+                    with open(path) as f:
+                        self.assertEqual(f.read(), square)
+                with open(handles) as f:
+                    self.assertEqual(f.read(), "0 0 0\n2 1.2 1\n")
+
     def test_every_solve_says_why_it_stopped(self):
         # stop_reason is never empty (it was for l2, exact and param's starting maps).
         for args in (["deform", "--example", "square", "--method", "l2"],

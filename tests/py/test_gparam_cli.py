@@ -252,6 +252,32 @@ class GParam(unittest.TestCase):
                         ["zero.txt", "line 4", "face 3"])
         self.expect_bad([self.cube, "--field", self.write("nan.txt", "".join(["nan 1 0\n"] + rows[1:]))],
                         ["nan.txt", "line 1", "not finite"])
+        # The file's own line, past comments and blank lines (it said line 4 for line 7), and a
+        # byte-order mark is no part of the first number.
+        header = "# my field\n# generated\n\n"
+        self.expect_bad([self.cube, "--field", self.write("hdr.txt", header + "".join(rows[:3] + ["0 0 0\n"] + rows[4:]))],
+                        ["hdr.txt", "line 7", "face 3", "the direction is zero"])
+        self.expect_bad([self.cube, "--field", self.write("cols.txt", header + "".join(rows[:2] + ["1 0\n"] + rows[3:]))],
+                        ["cols.txt", "line 6", "face 2", "expected 3 numbers"])
+        bom = self.write("bom.txt", "\ufeff" + "".join(rows))
+        self.assertEqual(self.gparam(self.cube, "--field", bom)["status"], "solved")
+        # Huge and tiny directions are directions (their norm over- or underflowed: "zero").
+        huge = self.write("huge.txt", "".join(" ".join(f"{1e307 * float(x):.17g}" for x in r.split()) + "\n" for r in rows))
+        self.assertEqual(self.gparam(self.cube, "--field", huge)["status"], "solved")
+        # No output may name an input: it would be destroyed (exit 0 before, the mesh replaced by JSON).
+        with open(self.cube) as f:
+            cube_text = f.read()
+        for args, needle in (([self.cube, "--summary", self.cube], "--summary"),
+                             ([self.cube, "--field", field, "--field-out", field], "--field-out"),
+                             ([self.cube, "-o", self.cube], "--output"),
+                             ([self.cube, "--distortion", self.cube], "--distortion")):
+            p = run("gparam", *args, check_code=1)
+            self.assertIn(needle, p.stderr)
+            self.assertIn("is the input mesh" if needle != "--field-out" else "is the --field file", p.stderr)
+        with open(self.cube) as f:
+            self.assertEqual(f.read(), cube_text)
+        with open(field) as f:
+            self.assertEqual([l for l in f if l.strip()], rows)
         _, nv = cube_obj()
         flat = ["6.283185307179586\n"] * nv
         self.expect_bad([self.cube, "--cones", self.write("flat.txt", "".join(flat))],

@@ -74,6 +74,59 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_only_runs_of_one_problem_are_compared(self):
+        # An ARAP run was ranked against fd runs ("L-inf is less distorting than L-inf"), two
+        # meshes named m.obj in two folders shared a section, and a capped solve read as its
+        # method's answer.
+        def deform(name, *extra, cwd=None):
+            run("deform", "--example", "square", "-o", f"{name}.obj", "--distortion", f"{name}.txt", "--summary",
+                f"{name}.json", "--quiet", *extra, cwd=cwd or self.dir, check_code=None)
+        deform("l2", "--method", "l2")
+        deform("linf", "--method", "linf")
+        deform("capped", "--method", "linf", "--max-iterations", "2")
+        deform("arap", "--method", "linf", "--measure", "arap")
+        p = run("report", "out", "l2.json", "linf.json", "capped.json", "arap.json", cwd=self.dir, check_code=2)
+        html = self.check_folder(os.path.join(self.dir, "out"))
+        sections = re.findall(r"<h2[^>]*>(.*?)</h2>", html)
+        self.assertEqual(len(sections), 2, sections)
+        self.assertTrue(any("measure arap" in s for s in sections), sections)
+        self.assertTrue(any("measure fd" in s for s in sections), sections)
+        self.assertNotIn("is less distorting than L∞ (least maximum) (arap", html)
+        self.assertIn("L∞ (least maximum) (capped.json) (not solved: max-iterations)", html)
+        # Two files named m.obj: two sections, titled by their paths.
+        square = "v 0 0\nv 1 0\nv 1 1\nv 0 1\nv 0.5 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
+        strip = "v 0 0\nv 2 0\nv 2 1\nv 0 1\nv 1 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
+        for folder, mesh in (("A", square), ("B", strip)):
+            os.makedirs(os.path.join(self.dir, folder))
+            cli_support.write(os.path.join(self.dir, folder, "m.obj"), mesh)
+            cli_support.write(os.path.join(self.dir, folder, "h.txt"), "0 0 0\n2 2.2 1.1\n")
+            run("deform", "m.obj", "--handles", "h.txt", "--method", "linf", "-o", "o.obj", "--distortion", "d.txt",
+                "--summary", "s.json", "--quiet", cwd=os.path.join(self.dir, folder))
+        run("report", "two", os.path.join("A", "s.json"), os.path.join("B", "s.json"), cwd=self.dir)
+        html = read(os.path.join(self.dir, "two", "index.html"))
+        sections = re.findall(r"<h2[^>]*>(.*?)</h2>", html)
+        self.assertEqual(len(sections), 2, sections)
+        self.assertTrue(sections[0].endswith(os.path.join("A", "m.obj")) and sections[1].endswith(os.path.join("B", "m.obj")),
+                        sections)
+
+    def test_zero_distortion_is_said_plainly(self):
+        # An exact map (1e-14 from rounding) gave "inf x the least maximum 0" and a histogram of noise.
+        grid = "".join(f"v {x} {y}\n" for y in range(4) for x in range(4))
+        grid += "".join(f"f {1 + x + 4 * y} {2 + x + 4 * y} {6 + x + 4 * y}\nf {1 + x + 4 * y} {6 + x + 4 * y} {5 + x + 4 * y}\n"
+                        for y in range(3) for x in range(3))
+        cli_support.write(os.path.join(self.dir, "g.obj"), grid)
+        cli_support.write(os.path.join(self.dir, "h.txt"), "0 0.5 0.25\n15 3.5 3.25\n")  # a translation
+        for m in ("l2", "linf"):
+            run("deform", "g.obj", "--handles", "h.txt", "--method", m, "-o", f"{m}.obj", "--distortion", f"{m}.txt",
+                "--summary", f"{m}.json", "--quiet", cwd=self.dir)
+        run("report", "z", "l2.json", "linf.json", cwd=self.dir)
+        html = read(os.path.join(self.dir, "z", "index.html"))
+        self.assertIn("no distortion (maximum", html)
+        self.assertNotIn("inf\u00d7", html)
+        self.assertNotIn("the least maximum 0", html)
+        svg = read(os.path.join(self.dir, "z", "g-obj", "histogram.svg"))
+        self.assertNotIn("e-14", svg)
+
     def test_report_needs_results_it_can_read(self):
         p = run("report", os.path.join(self.dir, "out"), check_code=1)
         self.assertIn("--run", p.stderr)

@@ -102,6 +102,13 @@ def test_progress_and_silence(capfd):
     steps = []
     strictmin.deform(V, F, idx, pos, method="direct", progress=steps.append, k_min=0.2)
     assert any(s["stage"] == "strict" for s in steps)
+    # What a level's iteration count counts: the solve's interior-point iterations under the
+    # field deviation, local-global steps under ARAP (each a whole L-infinity solve).
+    assert {s["level_iteration_unit"] for s in steps} == {"interior-point iterations"}
+    arap_steps = []
+    strictmin.deform(V, F, idx, pos, method="direct", measure="arap", progress=arap_steps.append, k_min=0.2)
+    assert arap_steps and {s["level_iteration_unit"] for s in arap_steps} == {"local-global steps"}
+    assert all(s["level_iterations"] >= 1 for s in arap_steps)
     capfd.readouterr()
     strictmin.deform(V, F, idx, pos, method="relax", measure="arap", lg_iterations=2)
     out, err = capfd.readouterr()

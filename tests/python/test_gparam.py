@@ -130,6 +130,11 @@ def test_bad_input(closed):
         strictmin.gparam(V, F, field=np.ones((len(F) - 1, 3)))
     with pytest.raises(ValueError, match="not finite"):
         strictmin.gparam(V, F, field=np.full((len(F), 3), np.nan))
+    # An array has rows, not lines: the message names the face alone.
+    zero = np.ones((len(F), 3))
+    zero[5] = 0
+    with pytest.raises(ValueError, match=r"^field: face 5: the direction is zero$"):
+        strictmin.gparam(V, F, field=zero)
     with pytest.raises(ValueError, match="curvature_alignment"):
         strictmin.gparam(V, F, field="curvature", curvature_alignment=0)
     with pytest.raises(ValueError, match="gap"):

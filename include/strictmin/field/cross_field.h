@@ -15,6 +15,7 @@
 #include <complex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "strictmin/field/surface_graph.h"
 #include "strictmin/mesh/mesh.h"
@@ -94,10 +95,11 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& graph, co
                                  double alignment = 0.1);
 
 // A field from one 3D direction per face (#F by 3): each is projected into its face's plane.
-// Throws InputError naming the face (and `source`, line = face + 1) for a non-finite or
-// zero (after projection) direction, or the wrong number of rows.
+// Throws InputError naming `source` and the face (and, when `lines` is given, the file's line
+// of that face's direction: read_field_file's) for a non-finite or zero (after projection)
+// direction, or the wrong number of rows.
 CrossField cross_field_from_directions(const Eigen::MatrixXd& directions, const FaceFrames& frames,
-                                       const std::string& source = "");
+                                       const std::string& source = "", const std::vector<long>& lines = {});
 
 // Multiplies the field u by the global rotation that gives face f a direction along d
 // (projected into its plane).
@@ -109,9 +111,10 @@ double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGr
 // One of the four directions of each face (the one at angle arg(u_f)/4), #F by 3, unit.
 Eigen::MatrixXd field_directions(const CrossField& field, const FaceFrames& frames);
 
-// The field file: one line per face, "x y z" (any vector in the face's plane). Reading
-// throws InputError naming the file and line for a malformed line or a wrong line count.
-Eigen::MatrixXd read_field_file(const std::string& path, int num_faces);
+// The field file: one line per face, "x y z" (any vector in the face's plane); '#' starts a
+// comment, blank lines are skipped. Reading throws InputError naming the file and line for a
+// malformed line or a wrong line count. `lines` (optional) receives each face's line number.
+Eigen::MatrixXd read_field_file(const std::string& path, int num_faces, std::vector<long>* lines = nullptr);
 void write_field_file(const std::string& path, const Eigen::MatrixXd& directions);
 
 }  // namespace strictmin

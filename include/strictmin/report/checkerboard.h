@@ -11,6 +11,8 @@ namespace strictmin {
 
 struct CheckerboardOptions {
   double checks = 16;             // checks across the longer side of the UV bounding box
+  double period = 0;              // > 0: checks of this side from UV (0, 0) instead (a seamless
+                                  // map's unit squares: each is a target square)
   Rgb light{240, 240, 240}, dark{70, 90, 160};
   RasterOptions raster;           // size, camera, frame (planar meshes: from the top, unshaded)
 };

@@ -54,6 +54,10 @@ struct ComparisonOptions {
 // 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten, so that the least maximum is
 // green-yellow, what only worse maps reach is orange to red, and low distortion is blue.
 double auto_colour_scale(double least_maximum);
+// The colour scale of a section with these runs: `requested` when positive, else
+// auto_colour_scale of their least maximum (what write_section uses; pictures drawn beside a
+// section take it too, so that one colour means one distortion on the page).
+double section_colour_scale(const std::vector<MethodRun>& runs, double requested);
 
 // Writes into report_dir/section.id/ (created when missing): the input picture, per run
 // <stem>.svg|png (its view) and, with several runs, <stem>-histogram.svg (its histogram in

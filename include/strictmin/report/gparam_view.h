@@ -16,7 +16,10 @@ struct GParamMarks {
   std::vector<char> seam_side;       // #F*3: side i (corners i, i+1) of face f lies on the cut
   std::vector<int> corner_index;     // #F*3: the index (quarters) of corner i's vertex, 0 if regular
   double line_width = 0.07;          // seam width, in barycentric units of a face
-  double dot_radius = 0.5;           // singularity dot, in barycentric units of a face
+  // Singularities are dots of this radius in output pixels (at most their 1-ring), white with
+  // a black rim for positive indices, black with a white rim for negative ones: colours the
+  // blue-to-red scale and the grid's checks do not use.
+  double dot_pixels = 4.5;
 };
 
 // mesh: the input surface; distortion: #F; scale: red end of the colour scale.

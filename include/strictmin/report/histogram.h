@@ -22,7 +22,10 @@ Histogram distortion_histogram(const Eigen::VectorXd& distortion, const Eigen::V
                                int bins = 40);
 
 // A round upper end for histograms of these vectors: the largest finite value rounded up to
-// 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten (at least `at_least`; 1 when nothing is finite).
+// Distortion values at or below this are zero to rounding in reports (an exact map's 1e-14).
+inline constexpr double kZeroDistortionShown = 1e-9;
+// 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten (at least `at_least`; 1 when
+// nothing is finite or every value is zero to rounding).
 double histogram_upper(const std::vector<const Eigen::VectorXd*>& distortions, double at_least = 0);
 
 }  // namespace strictmin

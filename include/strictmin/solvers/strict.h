@@ -25,7 +25,10 @@ struct StrictStep {
   int fixed_total = 0;   // elements fixed so far
   int solves = 0;        // L-infinity solves so far
   double time_s = 0;
-  int level_iterations = 0;      // interior-point iterations of this step's solve (direct)
+  int level_iterations = 0;      // iterations of this step's solve (direct), counted in level_iteration_unit
+  // What level_iterations counts: "interior-point iterations" (the field deviation's levels),
+  // "local-global steps" (ARAP/ASAP levels), "frame iterations" (qc/iso levels).
+  std::string level_iteration_unit = "interior-point iterations";
   int level_free_vertices = -1;  // vertices this step's solve moved (-1: not reported)
   int pinned_total = 0;          // elements pinned so far (DirectOptions::pin_essential)
 };
@@ -62,6 +65,8 @@ struct DirectOptions {
   bool warm_levels = true;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
+  // What the level solver's Result.iterations counts (StrictStep::level_iteration_unit).
+  std::string level_iteration_unit = "interior-point iterations";
 
   // Ranges: delta_k > 0, k_min >= 0, max_steps >= 1, level_gap < 1 (negative: the default),
   // moving_rings >= 0, pin_threshold in (0, 1]. False with the reason in *why otherwise.

@@ -32,6 +32,7 @@ struct GParamOptions {
   bool curvature_field = false;          // --field curvature (when no field is given)
   double curvature_alignment = 0.01;  // --curvature-alignment
   std::string field_source;              // names the field (or the cone file) in messages
+  std::vector<long> field_lines;         // each face's line in the field file (read_field_file; empty: an array)
   // --cones FILE: the field with exactly these cones (#V indices in quarters, cone_field.h).
   std::optional<std::vector<int>> cones;
   // --parallel: keep the field's singularities and replace the field by the parallel one with

@@ -229,6 +229,7 @@ Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& sta
   from_start.positions = start;
   // Each level: the bisection with the fixed elements' bounds as their own cone levels
   // (paper Section 7: "binary-search L-infinity optimization in the direct strict solver").
+  d.level_iteration_unit = "frame iterations";
   d.level_solver = [&](const Problem& level, const LinfOptions& o, const Eigen::MatrixXd& X) {
     ConformalOptions c = options;
     c.element_bounds = o.element_bounds;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "solvers/socp/soc.h"
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/sparse_cholesky.h"
 
 namespace strictmin::qc {
@@ -277,6 +278,7 @@ SparseSocpOutcome solve_sparse_socp(const SparseSocp& p, const Eigen::VectorXd& 
   double best_worst = std::numeric_limits<double>::infinity();
   int stalled = 0;
   for (int it = 0;; ++it) {
+    check_interrupt();  // solvers/interrupt.h
     // 2. Residuals: rx = c + G^T z (dual), rz = G x + s - h (primal); objectives, gap.
     const Eigen::VectorXd rx = p.c + p.G.transpose() * z;
     const Eigen::VectorXd rz = p.G * x + s - p.h;
