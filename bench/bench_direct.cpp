@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <string>
 
 #include "problems.h"
 #include "strictmin/solvers/strict.h"
@@ -14,35 +16,52 @@ using namespace strictmin;
 
 namespace {
 
+DirectOptions options_from_env(int max_steps) {
+  DirectOptions options;
+  options.max_steps = max_steps;
+  // STRICTMIN_DIRECT_MAX_STEPS: another cap on the levels (0: none), e.g. the bar to the end.
+  if (const char* v = std::getenv("STRICTMIN_DIRECT_MAX_STEPS"))
+    options.max_steps = std::atoi(v) > 0 ? std::atoi(v) : 100000;
+  // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
+  if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
+  // STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
+  options.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
+  return options;
+}
+
+// STRICTMIN_DIRECT_DISTORTION=FILE: each element's area and distortion, one pair per line.
+// False when the file cannot be written.
+bool write_distortion(const char* path, const Problem& p, const Result& r) {
+  FILE* f = std::fopen(path, "w");
+  if (!f) return false;
+  for (Eigen::Index e = 0; e < r.distortion.size(); ++e) std::fprintf(f, "%.17g %.17g\n", p.weights[e], r.distortion[e]);
+  return std::fclose(f) == 0;
+}
+
 void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
+  const char* distortion_file = std::getenv("STRICTMIN_DIRECT_DISTORTION");
+  if (distortion_file) {  // a missing folder is refused before minutes of solving
+    const std::filesystem::path folder = std::filesystem::path(distortion_file).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+      state.SkipWithError(("STRICTMIN_DIRECT_DISTORTION=" + std::string(distortion_file) + ": no folder " +
+                           folder.string()).c_str());
+      return;
+    }
+  }
   Result r;
   StrictStep last;
+  DirectOptions options = options_from_env(max_steps);
+  // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
+  LinfOptions linf;
+  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) linf.verbose = std::atoi(v);
+  options.progress = [&](const StrictStep& s) {
+    last = s;
+    std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
+                 s.k, s.fixed_total, s.fixed_now, s.level_iterations, s.level_free_vertices, s.time_s);
+  };
   for (auto _ : state) {
-    DirectOptions options;
-    options.max_steps = max_steps;
-    // STRICTMIN_DIRECT_MAX_STEPS: another cap on the levels (0: none), e.g. the bar to the end.
-    if (const char* v = std::getenv("STRICTMIN_DIRECT_MAX_STEPS"))
-      options.max_steps = std::atoi(v) > 0 ? std::atoi(v) : 100000;
-    // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
-    if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
-    // STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
-    options.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
-    // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
-    LinfOptions linf;
-    if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) linf.verbose = std::atoi(v);
-    options.progress = [&](const StrictStep& s) {
-      last = s;
-      std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
-                   s.k, s.fixed_total, s.fixed_now, s.level_iterations, s.level_free_vertices, s.time_s);
-    };
     r = solve_direct(p, options, linf);
     benchmark::DoNotOptimize(r.positions.data());
-    // STRICTMIN_DIRECT_DISTORTION=FILE: each element's area and distortion, one pair per line.
-    if (const char* path = std::getenv("STRICTMIN_DIRECT_DISTORTION"))
-      if (FILE* f = std::fopen(path, "w")) {
-        for (Eigen::Index e = 0; e < r.distortion.size(); ++e) std::fprintf(f, "%.17g %.17g\n", p.weights[e], r.distortion[e]);
-        std::fclose(f);
-      }
   }
   state.counters["triangles"] = p.num_elements();
   state.counters["steps"] = r.iterations;
@@ -51,8 +70,12 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
   state.counters["k_last"] = r.history.empty() ? 0.0 : r.history.back().max_distortion;
   state.counters["worst_level_gap"] = worst_level_gap(r);
   if (!r.message.empty()) std::fprintf(stderr, "direct: %s\n", r.message.c_str());
-  // A run capped on purpose (the bar) ends max-iterations at its level cap: that is the request.
-  const bool capped = max_steps < 100000 && r.status == SolveStatus::MaxIterations && r.iterations == max_steps;
+  if (distortion_file && !write_distortion(distortion_file, p, r))
+    state.SkipWithError(("STRICTMIN_DIRECT_DISTORTION=" + std::string(distortion_file) + ": cannot be written").c_str());
+  // A run capped on purpose (the bar, or STRICTMIN_DIRECT_MAX_STEPS) ends max-iterations at its
+  // level cap: that is the request. The cap is the effective one, options.max_steps.
+  const bool capped = options.max_steps < 100000 && r.status == SolveStatus::MaxIterations &&
+                      r.iterations == options.max_steps;
   if (!r.ok() && !capped) state.SkipWithError(("not solved: " + status_name(r.status) + ": " + r.message).c_str());
 }
 

@@ -11,13 +11,17 @@
 // curvature-aligned field, --field curvature, or the unit field, --field unit, instead of the smoothest).
 // STRICTMIN_DIRECT_NO_PIN=1: DirectOptions::pin_essential off (--no-pin).
 // STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
-// Prints the levels, the time (wall and process CPU), the status and the message.
+// Prints the levels, the time (wall and process CPU), the status and the message. Exits 1 with
+// a message on bad input (an option, a mesh that does not read or is not closed, a bad
+// environment value such as STRICTMIN_MOVING_RINGS=-1).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <stdexcept>
 #include <string>
 
+#include "args.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/strict.h"
@@ -31,40 +35,52 @@ double process_cpu() {
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
-int env_int(const char* name, int fallback) {
-  const char* v = std::getenv(name);
-  return v ? std::atoi(v) : fallback;
-}
-}  // namespace
 
-int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: bench_gparam_direct mesh.obj\n");
-    return 1;
+constexpr const char* kUsage =
+    "usage: bench_gparam_direct MESH.obj\n"
+    "Direct on a closed mesh's seamless problem, one line per level (environment: see the source's header).\n";
+
+// STRICTMIN_GPARAM_FIELD: the field of the global parametrization.
+void field_from_env(GParamOptions& o) {
+  const char* f = std::getenv("STRICTMIN_GPARAM_FIELD");
+  if (!f) return;
+  const std::string field = f;
+  if (field != "smoothest" && field != "curvature" && field != "unit")
+    throw std::invalid_argument("STRICTMIN_GPARAM_FIELD=" + field + ": smoothest, curvature or unit");
+  o.curvature_field = field == "curvature";
+  o.field_options.unit = field == "unit";
+}
+
+// "N moving vertices", or "all vertices moving" when the level does not say (-1: every vertex).
+std::string moving(int vertices) {
+  return vertices < 0 ? "all vertices moving" : std::to_string(vertices) + " moving vertices";
+}
+
+int run(int argc, char** argv) {
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
   }
-  const Mesh mesh = read_mesh(argv[1]);
-  GParamOptions o;
-  o.solver.method = Method::L2;
-  if (const char* f = std::getenv("STRICTMIN_GPARAM_FIELD")) {
-    const std::string field = f;
-    if (field != "smoothest" && field != "curvature" && field != "unit") {
-      std::fprintf(stderr, "STRICTMIN_GPARAM_FIELD=%s: smoothest, curvature or unit\n", f);
-      return 1;
-    }
-    o.curvature_field = field == "curvature";
-    o.field_options.unit = field == "unit";
-  }
-  const GParamOutcome g = global_parametrize(mesh, o, argv[1]);
+  if (argc != 2) throw std::invalid_argument(std::string(argc < 2 ? "no mesh given" : "one mesh only") + "\n" + kUsage);
+  const std::string file = argv[1];
+  if (file.rfind("-", 0) == 0) throw std::invalid_argument(file + ": unknown option\n" + kUsage);
+  // The environment first: a bad value is refused before minutes of solving.
   DirectOptions direct;
   direct.delta_k = 1e-3;
   direct.k_min = 0.1;
-  if (const int steps = env_int("STRICTMIN_DIRECT_MAX_STEPS", 0); steps > 0) direct.max_steps = steps;
+  if (const int steps = bench::env_int("STRICTMIN_DIRECT_MAX_STEPS", 0, 0); steps > 0) direct.max_steps = steps;
   direct.pin_essential = std::getenv("STRICTMIN_DIRECT_NO_PIN") == nullptr;
   direct.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
-  direct.moving_rings = env_int("STRICTMIN_MOVING_RINGS", direct.moving_rings);
-  const int verbose = env_int("STRICTMIN_LINF_VERBOSE", 0);
-  const int verbose_level = env_int("STRICTMIN_DIRECT_VERBOSE_LEVEL", 0);
+  direct.moving_rings = bench::env_int("STRICTMIN_MOVING_RINGS", direct.moving_rings, 0);
+  const int verbose = bench::env_int("STRICTMIN_LINF_VERBOSE", 0, 0, 2);
+  const int verbose_level = bench::env_int("STRICTMIN_DIRECT_VERBOSE_LEVEL", 0, 0);
   const bool penalty = std::getenv("STRICTMIN_LINF_PENALTY") != nullptr;
+  GParamOptions o;
+  o.solver.method = Method::L2;
+  field_from_env(o);
+
+  const Mesh mesh = read_mesh(file);
+  const GParamOutcome g = global_parametrize(mesh, o, file);
   int level = 0;
   // A level solver of our own (for the verbose lines and the penalty) turns pinning off
   // (DirectOptions::level_solver): set only when asked for.
@@ -82,15 +98,19 @@ int main(int argc, char** argv) {
     return r;
   };
   direct.progress = [&](const StrictStep& s) {
-    std::fprintf(stderr, "level %d: k %.8f, fixed %d (+%d), %d ipm iterations, %d moving vertices, %.2f s\n", s.step,
-                 s.k, s.fixed_total, s.fixed_now, s.level_iterations, s.level_free_vertices, s.time_s);
+    std::fprintf(stderr, "level %d: k %.8f, fixed %d (+%d), %d ipm iterations, %s, %.2f s\n", s.step, s.k,
+                 s.fixed_total, s.fixed_now, s.level_iterations, moving(s.level_free_vertices).c_str(), s.time_s);
   };
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = process_cpu();
   const Result r = solve_direct(g.problem, direct, LinfOptions{});
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%s faces %d levels %d time %.2f s cpu %.2f s status %s worst level gap %.3g\n%s\n", argv[1],
+  std::printf("%s faces %d levels %d time %.2f s cpu %.2f s status %s worst level gap %.3g\n%s\n", file.c_str(),
               mesh.num_elements(), r.iterations, s, process_cpu() - c0, status_name(r.status).c_str(),
               worst_level_gap(r), r.message.c_str());
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return bench::guarded_main("bench_gparam_direct", run, argc, argv); }

@@ -1,6 +1,7 @@
 // L2 field-deviation solve: assembly + symbolic analysis, numeric factorization and the
 // solve, on planar grids of ~10k, ~50k and ~100k triangles (boundary fixed, one interior
-// handle moved) and on the real disk meshes of ../shared/data (three vertices pinned).
+// handle moved) and on the real disk meshes of ../shared/data (vertex 0 pinned at the origin,
+// the one fixed vertex field deviation needs: file_problem).
 // Run: build/bench/bench_l2 --benchmark_out=l2.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 

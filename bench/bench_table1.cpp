@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "args.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/solvers/relax.h"
 #include "strictmin/tasks/gparam.h"
@@ -116,6 +117,11 @@ std::string cell(const nlohmann::json& row, const char* key, const char* fmt = "
   return buf;
 }
 
+// A text cell: the row's string KEY, "-" when the row has none (an --only-l2 row has no linf_status).
+std::string text(const nlohmann::json& row, const char* key) {
+  return row.contains(key) && row[key].is_string() ? row[key].get<std::string>() : "-";
+}
+
 std::string ratio(const nlohmann::json& row, const char* key, double paper) {
   if (!row.contains(key) || !(paper > 0)) return "-";
   char buf[64];
@@ -145,8 +151,8 @@ void print_table(const nlohmann::json& rows) {
     auto paper = [&](double v) { return has ? cell(nlohmann::json{{"v", v}}, "v", "%g") : std::string("-"); };
     std::printf("| %s | %d | %d | %s | %s (%s) | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", name.c_str(),
                 row["faces"].get<int>(), row["singularities"].get<int>(), cell(row, "field_cut_l2_s").c_str(),
-                cell(row, "linf_s").c_str(), row["linf_status"].get<std::string>().c_str(), paper(pr.linf_s).c_str(),
-                ratio(row, "linf_s", pr.linf_s).c_str(), row.contains("direct_levels") ? std::to_string(row["direct_levels"].get<int>()).c_str() : "-",
+                cell(row, "linf_s").c_str(), text(row, "linf_status").c_str(), paper(pr.linf_s).c_str(),
+                ratio(row, "linf_s", pr.linf_s).c_str(), cell(row, "direct_levels", "%.0f").c_str(),
                 cell(row, "direct_s").c_str(), paper(pr.direct_levels).c_str(), paper(pr.direct_s).c_str(),
                 ratio(row, "direct_s", pr.direct_s).c_str(), cell(row, "relax_s").c_str(), paper(pr.relax_s).c_str(),
                 ratio(row, "relax_s", pr.relax_s).c_str());
@@ -155,22 +161,39 @@ void print_table(const nlohmann::json& rows) {
 
 }  // namespace
 
+// The rows of earlier runs' JSON files as one table (the L2 table when no row has L-infinity,
+// i.e. all are --only-l2 runs).
+int print_merged(const std::vector<fs::path>& files) {
+  if (files.empty()) throw std::invalid_argument("--merge: no JSON files given");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& f : files) {
+    std::ifstream in(f);
+    if (!in) throw std::invalid_argument("--merge " + f.string() + ": cannot open");
+    const nlohmann::json run = nlohmann::json::parse(in, nullptr, false);
+    if (!run.is_array()) throw std::invalid_argument("--merge " + f.string() + ": not a bench_table1 JSON (an array of rows)");
+    for (const auto& r : run) {
+      if (!r.is_object() || !r.contains("mesh") || !r.contains("faces") || !r.contains("singularities"))
+        throw std::invalid_argument("--merge " + f.string() + ": a row without mesh, faces or singularities");
+      rows.push_back(r);
+    }
+  }
+  const bool any_linf = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.contains("linf_s"); });
+  if (any_linf) print_table(rows);
+  else print_l2_table(rows);
+  return 0;
+}
+
+void write_rows(const std::string& out, const nlohmann::json& rows) {
+  std::ofstream f(out);
+  f << rows.dump(2) << "\n";
+  if (!f.flush()) throw std::runtime_error("--out " + out + ": cannot be written");
+}
+
 constexpr const char* kUsage =
     "usage: bench_table1 [--out FILE.json] [--direct-max-faces N] [--sweeps N] [--only-l2] [--field smoothest|unit] [--parallel]\n"
     "                    [MESH.obj ...]\n"
     "       bench_table1 --merge RUN.json ...   (print earlier runs' rows as one table)\n"
     "Without meshes: every .obj in the shared data's closed/ folder (skipped when absent).\n";
-
-int parse_count(const std::string& flag, const std::string& text) {
-  std::size_t used = 0;
-  int value = -1;
-  try {
-    value = std::stoi(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || value < 0) throw std::invalid_argument(flag + " " + text + ": not a count (an integer >= 0)");
-  return value;
-}
 
 int run(int argc, char** argv) {
   std::string out = "table1.json";
@@ -184,8 +207,8 @@ int run(int argc, char** argv) {
       return 0;
     }
     if (a == "--out" && i + 1 < argc) out = argv[++i];
-    else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = parse_count(a, argv[++i]);
-    else if (a == "--sweeps" && i + 1 < argc) sweeps = parse_count(a, argv[++i]);
+    else if (a == "--direct-max-faces" && i + 1 < argc) direct_max_faces = bench::parse_count(a, argv[++i]);
+    else if (a == "--sweeps" && i + 1 < argc) sweeps = bench::parse_count(a, argv[++i]);
     else if (a == "--merge") merge = true;
     else if (a == "--only-l2") only_l2 = true;
     else if (a == "--parallel") parallel = true;
@@ -197,13 +220,8 @@ int run(int argc, char** argv) {
     else if (a.rfind("--", 0) == 0) throw std::invalid_argument(a + ": unknown option or missing value\n" + kUsage);
     else meshes.emplace_back(a);
   }
-  if (merge) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (const auto& f : meshes)
-      for (const auto& r : nlohmann::json::parse(std::ifstream(f))) rows.push_back(r);
-    print_table(rows);
-    return 0;
-  }
+  if (merge) return print_merged(meshes);
+  bench::check_output_folder("--out", out);  // before the first mesh's minutes
   if (meshes.empty()) {
     const fs::path dir = fs::path(STRICTMIN_SHARED_DATA) / "closed";
     if (!fs::is_directory(dir)) {
@@ -218,18 +236,11 @@ int run(int argc, char** argv) {
   for (const auto& m : meshes) {
     std::fprintf(stderr, "bench_table1: %s\n", m.c_str());
     rows.push_back(run_mesh(m, direct_max_faces, sweeps, only_l2, unit_field, parallel));
-    std::ofstream(out) << rows.dump(2) << "\n";
+    write_rows(out, rows);
   }
   if (only_l2) print_l2_table(rows);
   else print_table(rows);
   return 0;
 }
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {  // bad input (a mesh that does not read, a bad number)
-    std::fprintf(stderr, "bench_table1: error: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return bench::guarded_main("bench_table1", run, argc, argv); }

@@ -29,6 +29,7 @@ import glob
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -257,17 +258,36 @@ def write(out, meta, rows, methods):
         f.write(markdown(rows, methods))
 
 
+def fail(message):
+    """A clear message on stderr and exit 1 (bad input: no traceback)."""
+    sys.exit(f"param_table.py: {message}")
+
+
+def load_run(path):
+    """One earlier run's JSON (a dict with "meshes")."""
+    try:
+        with open(path) as f:
+            j = json.load(f)
+    except OSError as e:
+        fail(f"--merge {path}: cannot open: {e.strerror}")
+    except ValueError as e:
+        fail(f"--merge {path}: not JSON: {e}")
+    if not isinstance(j, dict) or not isinstance(j.get("meshes"), list):
+        fail(f"--merge {path}: not a param_table.py JSON (no \"meshes\" list)")
+    return j
+
+
 def merge(a):
     rows, meta, methods = {}, {}, []
     for path in a.merge:
-        with open(path) as f:
-            j = json.load(f)
+        j = load_run(path)
         for k, val in j.items():
             if k != "meshes":
                 meta.setdefault(k, val)
         for row in j["meshes"]:
             cur = rows.setdefault(row["mesh"], {"mesh": row["mesh"], "faces": row["faces"],
-                                                "path": row.get("path"), "runs": []})
+                                                "path": row.get("path"), "runs": [], "stored_verdicts": {}})
+            cur["stored_verdicts"].update(row.get("verdicts", {}))  # later files win, as for the runs
             for r in row["runs"]:
                 cur["runs"] = [x for x in cur["runs"] if x["method"] != r["method"]] + [r]
                 if r["method"] not in methods:
@@ -276,11 +296,47 @@ def merge(a):
     out_rows = sorted(rows.values(), key=lambda r: r["faces"])
     for row in out_rows:
         row["runs"].sort(key=lambda r: order.index(r["method"]))
-        row["verdicts"] = verdicts(row["path"], row["runs"], a.keep)
+        # Verdicts recomputed where the distortion files (--keep) and the mesh are there; the
+        # stored ones otherwise (a merge without --keep must not lose them).
+        stored = row.pop("stored_verdicts")
+        path = row["path"]
+        computed = verdicts(path, row["runs"], a.keep) if path and os.path.exists(path) else {}
+        row["verdicts"] = dict(stored, **computed)
     meta["methods"] = order
     meta["merged_from"] = a.merge
     write(a.out, meta, out_rows, order)
     print(markdown(out_rows, order))
+
+
+def check_program(flag, path):
+    """A program flag's value must run: an executable file, or a name on PATH."""
+    if os.sep in path:
+        if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+            fail(f"{flag} {path}: no such executable program")
+    elif shutil.which(path) is None:
+        fail(f"{flag} {path}: not found on PATH")
+
+
+def check_inputs(a):
+    """Everything that can be checked before the first solve (which may take minutes)."""
+    folder = os.path.dirname(a.out)
+    if folder and not os.path.isdir(folder):
+        fail(f"--out {a.out}: no folder {folder}")
+    if a.merge is not None:
+        return
+    if not a.cli:
+        fail("--cli is required (the strictmin program)")
+    check_program("--cli", a.cli)
+    if a.cgal and "cgal-arap" in a.methods:
+        check_program("--cgal", a.cgal)
+    for m in a.meshes or []:
+        if not os.path.isfile(m):
+            fail(f"--meshes {m}: no such file")
+    if a.keep:
+        try:
+            os.makedirs(a.keep, exist_ok=True)
+        except OSError as e:
+            fail(f"--keep {a.keep}: cannot create: {e.strerror}")
 
 
 def main():
@@ -300,13 +356,14 @@ def main():
     ap.add_argument("--merge", nargs="*", default=None, help="put together JSON outputs of earlier runs")
     ap.add_argument("--out", default="param_table")
     a = ap.parse_args()
+    if a.merge is not None and not a.merge:
+        fail("--merge: no JSON files given")
+    check_inputs(a)
     if a.merge:
         return merge(a)
-    if not a.cli:
-        ap.error("--cli is required")
-    if a.keep:
-        os.makedirs(a.keep, exist_ok=True)
     meshes = a.meshes or sorted(glob.glob(os.path.join(a.data, "*.obj")), key=faces_of)
+    if not meshes:
+        fail(f"no meshes: none given (--meshes) and no .obj in --data {a.data}")
     meta = {"lg_iterations": a.lg_iterations, "threads": a.threads, "methods": a.methods,
             "direct_max_faces": a.direct_max_faces, "started": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())}
     rows = []

@@ -10,12 +10,14 @@ handles, L-infinity and the strict minimizer spread it along the bar.
 Inputs: a planar 10 x 1 bar (made here, 80 x 8 cells) whose right end is turned by 180
 degrees and laid beside the left end (a U bend), and ../shared/data/tet/bar.mesh whose
 end slab (5% of the length) is twisted by 90 degrees about the bar's axis. Writes the
-meshes, handles, summaries and per-element distortions to DIR and a JSON table to stdout.
+meshes, handles, summaries and per-element distortions to DIR and a JSON table to stdout;
+each row has the deform command that made it ("command").
 """
 import argparse
 import json
 import math
 import os
+import shlex
 import subprocess
 import sys
 
@@ -97,7 +99,8 @@ def run_case(cli, name, mesh, handles, axis, lo, hi, out, methods, lg_iterations
                      "mean_near_handles": sum(d[i] for i in near) / len(near),
                      "mean_middle": sum(d[i] for i in middle) / len(middle),
                      "max_near_handles": max(d[i] for i in near), "max_middle": max(d[i] for i in middle),
-                     "local_global_iterations": s.get("local_global_iterations"), "time_s": s["time_s"]})
+                     "local_global_iterations": s.get("local_global_iterations"), "time_s": s["time_s"],
+                     "command": shlex.join(cmd)})  # to re-run it, e.g. with --report DIR for pictures
         print(json.dumps(rows[-1]), file=sys.stderr)
     return rows
 

@@ -9,18 +9,30 @@
 #   defaults: build-fuzz/, 5 s per target, all four targets (fuzz_obj fuzz_off fuzz_medit fuzz_handles)
 # Run by ctest as fuzz_smoke (tests/CMakeLists.txt) with the build tree under build/.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-build=build-fuzz
+usage="usage: bash scripts/fuzz_smoke.sh [--build-dir DIR] [--seconds S] [TARGET...]"
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$root/build-fuzz
 seconds=${STRICTMIN_FUZZ_SECONDS:-5}
 targets=()
+# The arguments first, in the caller's folder: a relative --build-dir is the caller's, not the
+# repository's.
 while [ $# -gt 0 ]; do
   case "$1" in
-    --build-dir) build=$2; shift 2 ;;
-    --seconds) seconds=$2; shift 2 ;;
+    -h|--help) echo "$usage"; exit 0 ;;
+    --build-dir|--seconds)
+      if [ $# -lt 2 ] || [ -z "$2" ]; then echo "fuzz_smoke: $1: missing value" >&2; echo "$usage" >&2; exit 1; fi
+      if [ "$1" = --seconds ]; then seconds=$2; else build=$2; fi
+      shift 2 ;;
+    -*) echo "fuzz_smoke: $1: unknown option" >&2; echo "$usage" >&2; exit 1 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
+case "$seconds" in
+  ''|*[!0-9]*) echo "fuzz_smoke: --seconds $seconds (or STRICTMIN_FUZZ_SECONDS): not a whole number of seconds" >&2; exit 1 ;;
+esac
+case "$build" in /*) ;; *) build=$PWD/$build ;; esac
 [ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_off fuzz_medit fuzz_handles)
+cd "$root"
 
 cxx=$(command -v clang++ || command -v clang++-14 || true)
 if [ -z "$cxx" ]; then

@@ -20,7 +20,7 @@
 
 int main(int argc, char** argv) try {
   using namespace strictmin;
-  // #V by 2 positions, #F by 3 triangles (or #F by 4 tets read from a .mesh file).
+  // #V by 2 or 3 positions, #F by 3 triangles (or #F by 4 tets read from a .mesh file).
   const Mesh mesh = argc > 1 ? read_mesh(argv[1]) : make_grid(40, 10, 4.0, 1.0);
   const std::string output = argc > 2 ? argv[2] : "deformed.obj";
 
@@ -31,9 +31,13 @@ int main(int argc, char** argv) try {
   const Eigen::RowVectorXd centre = 0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff());
   Eigen::Index middle = 0;
   (mesh.V.rowwise() - centre).rowwise().squaredNorm().minCoeff(&middle);
+  // Handles have the map's dimension, decided as the strictmin tool does: planar triangles
+  // (2D coordinates, or 3D ones with a constant z as most OBJ files) move in the plane; tets
+  // and 3D surfaces in 3D.
+  const int dim = mesh.element_type() == ElementType::Tetrahedron || !mesh.is_planar() ? 3 : 2;
   std::vector<Handle> handles;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
-    Eigen::VectorXd p = mesh.V.row(v).transpose();  // 2 or 3 coordinates, as the mesh
+    Eigen::VectorXd p = mesh.V.row(v).leftCols(dim).transpose();
     if (v == middle) {
       p(1) += 0.05 * (x1 - x0);
       handles.push_back({v, p});

@@ -9,13 +9,34 @@ import math
 import sys
 
 
-def main(path):
+USAGE = "usage: homer_handles.py MESH.obj > handles.txt"
+
+
+def read_vertices(path):
+    """The OBJ's 'v x y z' vertices; exits with a message when there are none."""
     V = []
-    with open(path) as f:
-        for line in f:
-            t = line.split()
-            if t and t[0] == "v":
-                V.append(tuple(float(x) for x in t[1:4]))
+    try:
+        with open(path) as f:
+            for number, line in enumerate(f, 1):
+                t = line.split()
+                if t and t[0] == "v":
+                    if len(t) < 4:
+                        sys.exit(f"homer_handles.py: {path}:{number}: a vertex needs x y z")
+                    try:
+                        V.append(tuple(float(x) for x in t[1:4]))
+                    except ValueError:
+                        sys.exit(f"homer_handles.py: {path}:{number}: not a number in {line.strip()!r}")
+    except OSError as e:
+        sys.exit(f"homer_handles.py: {path}: {e.strerror}")
+    except UnicodeDecodeError:
+        sys.exit(f"homer_handles.py: {path}: not a text OBJ file")
+    if not V:
+        sys.exit(f"homer_handles.py: {path}: no vertices ('v x y z' lines): not an OBJ mesh?")
+    return V
+
+
+def main(path):
+    V = read_vertices(path)
     ys = [v[1] for v in V]
     lo, hi = min(ys), max(ys)
     h = hi - lo
@@ -30,6 +51,9 @@ def main(path):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__.strip() + "\n\n" + USAGE)
+        sys.exit(0)
     if len(sys.argv) != 2:
-        sys.exit("usage: homer_handles.py MESH.obj > handles.txt")
+        sys.exit(USAGE)
     main(sys.argv[1])

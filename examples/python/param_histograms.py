@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Parametrize a disk-topology mesh three ways (L2, L-infinity, the strict minimizer by
-relaxation; ARAP in each), write the maps as UV-mapped OBJ files with meshio and plot the
+relaxation; ARAP in each), write the maps as UV-mapped OBJ files and plot the
 three distortion histograms (log scale) to a PNG with matplotlib.
 
     PYTHONPATH=build/python python3 examples/python/param_histograms.py [MESH.obj] [--out DIR]
@@ -17,13 +17,24 @@ import matplotlib
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
-import meshio  # noqa: E402
 import numpy as np  # noqa: E402
 
 import strictmin  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 DEFAULT_DATA = Path(os.environ.get("STRICTMIN_SHARED_DATA", HERE.parent.parent.parent / "shared" / "data"))
+
+
+def write_uv_obj(path, V, F, uv):
+    """An OBJ with one vt per vertex and 'f a/a b/b c/c' corners: every face has vt indices,
+    so `strictmin eval MESH.obj MAP.obj` takes the UVs as the map (docs/formats.md)."""
+    with open(path, "w") as f:
+        for p in V:
+            f.write("v " + " ".join(repr(float(x)) for x in p) + "\n")
+        for t in uv:
+            f.write(f"vt {float(t[0])!r} {float(t[1])!r}\n")
+        for a, b, c in np.asarray(F) + 1:
+            f.write(f"f {a}/{a} {b}/{b} {c}/{c}\n")
 
 
 def main():
@@ -47,7 +58,7 @@ def main():
     for name, r in runs.items():
         print(f"{name:15s} {r}")
         path = out / f"{Path(args.mesh).stem}_{name.split()[0].lower().replace('-', '')}.obj"
-        meshio.write_points_cells(str(path), V, [("triangle", F)], point_data={"obj:vt": r.uv})
+        write_uv_obj(path, V, F, r.uv)
         print(f"{'':15s} wrote {path}")
 
     # Log-scale histograms on shared bins: the strict minimizer moves area out of the top bins.

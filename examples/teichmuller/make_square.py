@@ -1,14 +1,30 @@
 #!/usr/bin/env python3
 """A Teichmueller-like set-up (paper Figure 15): the unit square on an N x N grid, every
 boundary vertex fixed where it is, and two interior landmarks turned about the centre.
-Writes square.obj and handles.txt ('vertex x y' lines, 0-based) into the given folder."""
+Writes square.obj and handles.txt ('vertex x y' lines, 0-based) into the given folder.
+
+    python3 examples/teichmuller/make_square.py [N=24] [OUT=.]   (N >= 4)"""
 import math
 import os
 import sys
 
-n = int(sys.argv[1]) if len(sys.argv) > 1 else 24
+USAGE = "usage: make_square.py [N=24] [OUT=.]   (N: cells per side, an integer >= 4)"
+if len(sys.argv) > 1 and sys.argv[1] in ("-h", "--help"):
+    print(__doc__)
+    sys.exit(0)
+if len(sys.argv) > 3:
+    sys.exit(USAGE)
+try:
+    n = int(sys.argv[1]) if len(sys.argv) > 1 else 24
+except ValueError:
+    sys.exit(f"make_square.py: N {sys.argv[1]!r}: not an integer\n{USAGE}")
+if n < 4:  # the landmarks at 1/4 and 3/4 must be interior vertices
+    sys.exit(f"make_square.py: N {n}: must be >= 4\n{USAGE}")
 out = sys.argv[2] if len(sys.argv) > 2 else "."
-os.makedirs(out, exist_ok=True)
+try:
+    os.makedirs(out, exist_ok=True)
+except OSError as e:
+    sys.exit(f"make_square.py: output folder {out}: {e.strerror}")
 V = [(i / n, j / n) for j in range(n + 1) for i in range(n + 1)]
 F = []
 for j in range(n):
