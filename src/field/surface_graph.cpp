@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 #include "strictmin/param/topology.h"
 
 namespace strictmin {
@@ -244,6 +245,7 @@ std::optional<SurfaceGraph> sorted_surface_graph(const Mesh& mesh) {
 }  // namespace
 
 SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source) {
+  check_mesh_structure(mesh, source);
   if (std::optional<SurfaceGraph> g = sorted_surface_graph(mesh)) return std::move(*g);
   SurfaceGraph checked = checked_surface_graph(mesh, source);  // throws, naming the defect
   return checked;

@@ -304,6 +304,28 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
   Validator(mesh, source).run(warnings, check_geometry);
 }
 
+void check_mesh_structure(const Mesh& mesh, const std::string& source) {
+  const std::string name = source.empty() ? std::string("mesh") : source;
+  if (mesh.F.rows() > 0 && mesh.F.cols() != 3 && mesh.F.cols() != 4)
+    throw InputError(name + ": elements have " + std::to_string(mesh.F.cols()) +
+                     " corners (need 3: triangles, or 4: tetrahedra)");
+  if (mesh.V.rows() > 0 && mesh.V.cols() != 2 && mesh.V.cols() != 3)
+    throw InputError(name + ": vertices have " + std::to_string(mesh.V.cols()) + " coordinates (need 2 or 3)");
+  if (mesh.F.rows() > 0 && mesh.F.cols() == 4 && mesh.V.cols() != 3)
+    throw InputError(name + ": tetrahedra need 3D vertex coordinates");
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (!mesh.V.row(v).allFinite())
+      throw InputError(name + ": vertex " + std::to_string(v) + " (0-based) has a coordinate that is not finite");
+  const char* noun = mesh.F.cols() == 4 ? "tet " : "face ";
+  for (Eigen::Index e = 0; e < mesh.F.rows(); ++e)
+    for (Eigen::Index k = 0; k < mesh.F.cols(); ++k) {
+      const int v = mesh.F(e, k);
+      if (v < 0 || v >= mesh.V.rows())
+        throw InputError(name + ": " + noun + std::to_string(e) + " (0-based) has vertex " + std::to_string(v) +
+                         ", outside 0.." + std::to_string(mesh.V.rows() - 1));
+    }
+}
+
 std::vector<int> unreferenced_vertices(const Mesh& mesh) {
   std::vector<char> used(mesh.V.rows(), 0);
   for (Eigen::Index e = 0; e < mesh.F.rows(); ++e)

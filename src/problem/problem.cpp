@@ -5,6 +5,7 @@
 #include <string>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 
 namespace strictmin {
 
@@ -130,6 +131,7 @@ double simplex_gradients(const Eigen::Matrix<double, d + 1, d>& P, Eigen::Matrix
 }  // namespace
 
 Problem make_problem(const Mesh& mesh) {
+  check_mesh_structure(mesh, "make_problem");
   Problem p;
   const bool tets = mesh.element_type() == ElementType::Tetrahedron;
   const bool planar = !tets && mesh.is_planar();

@@ -1,7 +1,9 @@
 #include "strictmin/solvers/irls.h"
 
 #include <chrono>
+#include <cmath>
 
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/io/input_error.h"
@@ -17,6 +19,7 @@ bool IrlsOptions::is_valid(std::string* why) const {
 Result solve_irls(const Problem& p, const IrlsOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("irls: " + why);
+  check_problem(p, "irls");
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   Result r;
@@ -35,6 +38,11 @@ Result solve_irls(const Problem& p, const IrlsOptions& options) {
     // Lawson's update; a floor keeps K positive definite when some D_T reach 0.
     w = w.cwiseProduct(r.distortion);
     const double total = p.weights.dot(w);
+    if (!std::isfinite(total)) {
+      r.status = SolveStatus::NumericalError;
+      r.message = "IRLS: the map's distortion is not finite";
+      break;
+    }
     if (!(total > 0)) break;  // every element at zero distortion: nothing to improve
     w /= total;
     w = w.cwiseMax(1e-12 * w.maxCoeff());

@@ -1,4 +1,5 @@
 #include "strictmin/solvers/l2.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/timing.h"
 
 #include <chrono>
@@ -12,7 +13,7 @@
 
 namespace strictmin {
 
-L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(p.free_index()) {
+L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_((check_problem(p, "l2"), p.free_index())) {
   if (p.has_equalities() && options.complex_equalities) {
     if (auto basis = complex_equality_basis(p)) {
       complex_ = std::make_shared<ComplexL2>(std::move(*basis));
@@ -189,6 +190,10 @@ Result solve_l2(const Problem& p, const L2Options& options) {
   r.positions = solver.solve(p);
   r.distortion = field_deviation(p, r.positions);
   r.iterations = 1;
+  if (r.status == SolveStatus::Solved && !(r.positions.allFinite() && r.distortion.allFinite())) {
+    r.status = SolveStatus::NumericalError;
+    r.message = "least squares: the solve gave a map that is not finite";
+  }
   r.time_s = seconds_since(t0);
   return r;
 }

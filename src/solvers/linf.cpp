@@ -8,6 +8,7 @@
 //   6. the status, decided from what the solve knows (result.h);
 //   7. optionally (Section 5.1 (a)) the least L2 map among the optima.
 // docs/maths.md section 3 has the program and its certificate.
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/linf.h"
 
 #include <algorithm>
@@ -148,6 +149,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   // 1. Options, element classes, the cases without an answer.
   std::string why;
   if (!options.is_valid(&why)) throw InputError("linf: " + why);
+  check_problem(p, "linf");
   const int E = p.num_elements();
   if (options.element_bounds.size() != 0 && options.element_bounds.size() != E)
     throw InputError("element_bounds has " + std::to_string(options.element_bounds.size()) + " entries, the problem has " +

@@ -1,4 +1,5 @@
 #include "strictmin/solvers/local_global.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/timing.h"
 
 #include <algorithm>
@@ -280,6 +281,8 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   const auto t0 = std::chrono::steady_clock::now();
   std::string why;
   if (!o.is_valid(&why)) throw InputError("local-global: " + why);
+  check_problem(problem, "local-global");
+  check_map(problem, X0, "local-global start");
   if (!solver.is_valid(&why)) throw InputError("invalid solver options: " + why);
   relax_detail::check_no_flips(problem, o.no_flips || solver.relax.no_flips, "local-global");
   if (o.shapes.size() != 0 &&

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "solvers/element_assembly.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/equality_basis.h"
 #include "strictmin/solvers/l2.h"
@@ -54,6 +55,7 @@ bool LpOptions::is_valid(std::string* why) const {
 Result solve_lp(const Problem& p, const LpOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("lp: " + why);
+  check_problem(p, "lp");
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   Result r = solve_l2(p);
@@ -81,6 +83,12 @@ Result solve_lp(const Problem& p, const LpOptions& options) {
     // Every element at zero distortion to rounding (the distortion is dimensionless): nothing
     // to lower, and a Newton decrement relative to f = round-off never settled (an exact map
     // ran to the iteration cap at p = 4).
+    if (!std::isfinite(scale)) {
+      converged = false;
+      r.status = SolveStatus::NumericalError;
+      r.message = "L_p: the map's distortion is not finite";
+      break;
+    }
     if (!(scale > kZeroDistortion)) {
       zero = true;
       break;

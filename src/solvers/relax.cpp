@@ -1,5 +1,6 @@
 // Relaxation-based strict minimization (paper Algorithm 3): the sweeper and the driver.
 // The sweep itself is in relax_sweep.cpp.
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/relax.h"
 
 #include <chrono>
@@ -103,6 +104,8 @@ bool RelaxOptions::is_valid(std::string* why) const {
 Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const RelaxOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("relax: " + why);
+  check_problem(problem, "relax");
+  check_map(problem, initial, "relax start");
   const auto t0 = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   if (initial.rows() != problem.num_vertices || initial.cols() != problem.image_dim)

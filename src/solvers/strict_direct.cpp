@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/problem/subproblem.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/strict.h"
@@ -124,6 +125,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
   std::string why;
   if (!options.is_valid(&why)) throw InputError("direct: " + why);
   if (!linf_options.is_valid(&why)) throw InputError("linf: " + why);
+  check_problem(p, "direct");
   const std::vector<char> movable = movable_elements(p);
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
   const double constant_max = bound_constant_elements(p, movable, bounds);

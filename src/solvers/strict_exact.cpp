@@ -26,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/strict.h"
 #include "strictmin/solvers/timing.h"
@@ -53,6 +54,7 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
   std::string why;
   if (!options.is_valid(&why)) throw InputError("exact: " + why);
   if (!linf_options.is_valid(&why)) throw InputError("linf: " + why);
+  check_problem(p, "exact");
   if (p.num_elements() > options.max_elements)
     throw InputError("the exact strict minimizer needs up to one L-infinity solve per element and level; " +
                      std::to_string(p.num_elements()) + " elements is above its limit of " +

@@ -1,6 +1,7 @@
 #include "strictmin/tasks/conformal_method.h"
 
 #include <algorithm>
+#include <string>
 
 #include "strictmin/io/input_error.h"
 
@@ -10,6 +11,8 @@ bool is_conformal_measure(Measure m) { return m == Measure::Quasiconformal || m 
 
 Result run_conformal_method(const Problem& problem, const Eigen::MatrixXd& start, Measure measure,
                             const SolverOptions& options, ConformalStats* stats) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("invalid solver options: " + why);  // as run_method (NaN gap, 0 frames)
   // 1. The options of the bisection from the L-infinity ones (--gap: the bracket's width).
   ConformalOptions c;
   c.measure = measure;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 #include "strictmin/problem/parts.h"
 #include "strictmin/measures/measures.h"
 #include "strictmin/measures/polar.h"
@@ -59,6 +60,8 @@ std::string interp_kind_name(InterpKind k) {
 
 Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::string& sn, const std::string& tn)
     : source_(source) {
+  check_mesh_structure(source, sn);
+  check_mesh_structure(target, tn);
   check_same_connectivity(source, target, sn, tn);
   if (source.num_elements() == 0) throw InputError(sn + " has no elements");
   if (source.F.cols() == 4) kind_ = InterpKind::Tets;

@@ -31,6 +31,12 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 // ends in numerical-error (measured: 1e-150 and 1e150 solve, 1e-170 and 1e170 do not).
 constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
 
+// The part of validate_mesh that every function taking a Mesh relies on, for meshes built in
+// code: 3 or 4 corners per element, 2 or 3 coordinates per vertex (3 for tets), finite
+// coordinates, every index in range. Throws InputError naming `source`, the element or vertex
+// and the reason (an index out of range read and wrote out of bounds before).
+void check_mesh_structure(const Mesh& mesh, const std::string& source);
+
 // Vertices used by no element.
 std::vector<int> unreferenced_vertices(const Mesh& mesh);
 

@@ -50,6 +50,11 @@ struct ConformalOptions {
   // bisect as qc does (the two agree to the tolerance; kept for comparison).
   bool iso_one_program = true;
   std::function<void(const IterationRecord&)> progress;  // after every frame iteration
+
+  // Ranges: bisection_tolerance and frame_tolerance > 0, max_bisection_steps,
+  // max_frame_iterations and max_ipm_iterations >= 1. False with the reason in *why otherwise
+  // (the solvers below throw InputError with it).
+  bool is_valid(std::string* why = nullptr) const;
 };
 
 struct ConformalStats {

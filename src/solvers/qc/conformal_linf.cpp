@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/conformal.h"
+#include "solvers/option_check.h"
 #include "solvers/qc/bisection.h"
 #include "solvers/qc/iso_level.h"
 #include "strictmin/solvers/timing.h"
@@ -17,6 +19,11 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // The level of the first test when the start is not orientation-preserving: K (or S) = 1e6.
 constexpr double kCap = 1e6;
+
+void check_conformal_options(const ConformalOptions& o) {
+  std::string why;
+  if (!o.is_valid(&why)) throw InputError(measure_name(o.measure) + ": " + why);
+}
 
 void check_measure(Measure m) {
   if (m != Measure::Quasiconformal && m != Measure::Isometric)
@@ -70,10 +77,26 @@ Eigen::VectorXd conformal_distortion(const Problem& p, Measure m, const Eigen::M
   return d;
 }
 
+bool ConformalOptions::is_valid(std::string* why) const {
+  return OptionCheck(why)
+      .positive("bisection_tolerance", bisection_tolerance)
+      .positive("frame_tolerance", frame_tolerance)
+      .at_least("max_bisection_steps", max_bisection_steps, 1)
+      .at_least("max_frame_iterations", max_frame_iterations, 1)
+      .at_least("max_ipm_iterations", max_ipm_iterations, 1)
+      .ok();
+}
+
 Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start, const ConformalOptions& options,
                             ConformalStats* stats) {
   const auto t0 = std::chrono::steady_clock::now();
   check_measure(options.measure);
+  check_conformal_options(options);
+  check_problem(problem, measure_name(options.measure));
+  check_map(problem, start, measure_name(options.measure) + " start");
+  if (options.element_bounds.size() != 0 && options.element_bounds.size() != problem.num_elements())
+    throw InputError(measure_name(options.measure) + ": " + std::to_string(options.element_bounds.size()) +
+                     " element bounds for " + std::to_string(problem.num_elements()) + " elements");
   // 1. The cones' affine parts and the start.
   const qc::ConformalParts parts = qc::conformal_parts(problem);
   Eigen::VectorXd x = problem.free_dofs(start);
@@ -222,6 +245,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
 Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& start, const ConformalOptions& options,
                               const DirectOptions& direct, ConformalStats* stats) {
   check_measure(options.measure);
+  check_conformal_options(options);
   ConformalStats local;
   ConformalStats& st = stats ? *stats : local;
   DirectOptions d = direct;

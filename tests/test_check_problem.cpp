@@ -1,0 +1,164 @@
+// The Problem's contract at every solver's entry (problem/check_problem.h) and the mesh's at
+// make_problem's (mesh/validate.h, check_mesh_structure): a Problem or Mesh built in code with
+// wrong sizes, indices out of range or non-finite numbers is an InputError naming what is
+// wrong, for every solver, instead of out-of-range reads, a loop without end (relax with an
+// infinite target) or NaN maps reported as solved.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "strictmin/io/input_error.h"
+#include "strictmin/mesh/generators.h"
+#include "strictmin/problem/check_problem.h"
+#include "strictmin/problem/problem.h"
+#include "strictmin/solvers/conformal.h"
+#include "strictmin/solvers/local_global.h"
+#include "strictmin/solvers/relax.h"
+#include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/method.h"
+
+using namespace strictmin;
+
+namespace {
+
+// A 4 x 4 grid with its left and right columns held (a well-posed problem).
+Problem grid_problem() {
+  Problem p = make_problem(make_grid(4, 4));
+  std::vector<Handle> handles;
+  for (int v = 0; v < p.num_vertices; ++v) {
+    const double x = p.positions(v, 0);
+    if (x < 1e-9 || x > 1 - 1e-9) handles.push_back({v, p.positions.row(v).transpose() * (x > 0.5 ? 1.2 : 1.0)});
+  }
+  p.fix(handles);
+  return p;
+}
+
+const std::vector<Method> kMethods = {Method::L2, Method::Linf, Method::Lp, Method::Irls, Method::Relax,
+                                      Method::Direct, Method::Exact};
+
+// Every method throws InputError on p, with `needle` in the message.
+void expect_refused_by_every_method(const Problem& p, const std::string& needle, const std::string& what) {
+  for (Method m : kMethods) {
+    SolverOptions o;
+    o.method = m;
+    o.relax.sweeps = 1;
+    try {
+      run_method(p, o);
+      ADD_FAILURE() << what << ": " << method_name(m) << " accepted it";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << what << ", " << method_name(m) << ": " << e.what();
+    }
+  }
+}
+
+}  // namespace
+
+TEST(CheckProblem, AWellFormedProblemPasses) {
+  const Problem p = grid_problem();
+  EXPECT_NO_THROW(check_problem(p, "test"));
+  for (Method m : kMethods) {
+    SolverOptions o;
+    o.method = m;
+    EXPECT_EQ(run_method(p, o).status, SolveStatus::Solved) << method_name(m);
+  }
+}
+
+TEST(CheckProblem, EveryMethodRefusesInconsistentArrays) {
+  const Problem good = grid_problem();
+  const std::vector<std::pair<std::string, std::function<void(Problem&)>>> cases = {
+      {"fixed flags", [](Problem& p) { p.fixed.resize(3); }},
+      {"outside 0..", [](Problem& p) { p.elements(0, 0) = 1000; }},
+      {"outside 0..", [](Problem& p) { p.elements(2, 1) = -1; }},
+      {"the map is", [](Problem& p) { p.num_vertices += 5; p.fixed.resize(p.num_vertices, 0); }},
+      {"targets", [](Problem& p) { p.targets.conservativeResize(4, Eigen::NoChange); }},
+      {"weights", [](Problem& p) { p.weights.conservativeResize(2); }},
+      {"element array", [](Problem& p) { p.image_dim = 3; p.domain_dim = 3; }},
+      {"dimensions", [](Problem& p) { p.image_dim = 2; p.domain_dim = 3; }},
+      {"the map is", [](Problem& p) { p.positions.conservativeResize(3, Eigen::NoChange); }},
+      {"columns", [](Problem& p) { p.eq_matrix.resize(1, 5); p.eq_rhs = Eigen::VectorXd::Zero(1); }},
+      {"right-hand sides", [](Problem& p) { p.eq_matrix.resize(2, 2 * p.num_vertices); p.eq_rhs = Eigen::VectorXd::Zero(1); }},
+      {"target is not finite", [](Problem& p) { p.targets(0, 0) = INFINITY; }},
+      {"target is not finite", [](Problem& p) { p.targets(3, 1) = NAN; }},
+      {"weight", [](Problem& p) { p.weights(1) = -1; }},
+      {"weight", [](Problem& p) { p.weights(1) = NAN; }},
+      {"gradients are not finite", [](Problem& p) { p.gradients(0, 0) = INFINITY; }},
+      {"position is not finite", [](Problem& p) { p.positions(0, 0) = NAN; }},
+  };
+  for (const auto& [needle, spoil] : cases) {
+    Problem p = good;
+    spoil(p);
+    expect_refused_by_every_method(p, needle, needle);
+  }
+}
+
+// x_0 = 5 with vertex 0 held at (0, 0): no map meets it. linf, direct and exact dropped the
+// row (all its unknowns held) and said solved with the row violated by 5.
+TEST(CheckProblem, AnEqualityOnFixedVerticesThatFailsIsRefused) {
+  Problem p = grid_problem();
+  ASSERT_TRUE(p.fixed[0]);
+  p.eq_matrix.resize(1, 2 * p.num_vertices);
+  p.eq_matrix.insert(0, 0) = 1.0;
+  p.eq_rhs = Eigen::VectorXd::Constant(1, 5.0);
+  expect_refused_by_every_method(p, "fixed vertices only and does not hold", "x_0 = 5");
+  p.eq_rhs(0) = p.positions(0, 0);  // one that holds is kept, and met (relax takes seams only)
+  for (Method m : kMethods) {
+    if (m == Method::Relax) continue;
+    SolverOptions o;
+    o.method = m;
+    const Result r = run_method(p, o);
+    EXPECT_EQ(r.status, SolveStatus::Solved) << method_name(m);
+    EXPECT_NEAR(r.positions(0, 0), p.positions(0, 0), 1e-12) << method_name(m);
+  }
+}
+
+TEST(CheckProblem, StartsAndOptionsOfTheOtherEntries) {
+  const Problem p = grid_problem();
+  EXPECT_THROW(relax(p, Eigen::MatrixXd::Zero(3, 2)), InputError);
+  SolverOptions o;
+  o.method = Method::Linf;
+  EXPECT_THROW(local_global(p, Eigen::MatrixXd::Zero(3, 2), o, LocalGlobalOptions{}), InputError);
+  ConformalOptions c;
+  EXPECT_THROW(solve_conformal_linf(p, Eigen::MatrixXd::Zero(2, 2), c), InputError);
+  c.element_bounds = Eigen::VectorXd::Ones(2);
+  EXPECT_THROW(solve_conformal_linf(p, p.positions, c), InputError);
+  for (auto spoil : std::vector<std::function<void(ConformalOptions&)>>{
+           [](ConformalOptions& x) { x.bisection_tolerance = NAN; },
+           [](ConformalOptions& x) { x.frame_tolerance = -1; },
+           [](ConformalOptions& x) { x.max_bisection_steps = -5; },
+           [](ConformalOptions& x) { x.max_frame_iterations = 0; },
+           [](ConformalOptions& x) { x.max_ipm_iterations = 0; }}) {
+    ConformalOptions bad;
+    spoil(bad);
+    std::string why;
+    EXPECT_FALSE(bad.is_valid(&why));
+    EXPECT_FALSE(why.empty());
+    EXPECT_THROW(solve_conformal_linf(p, p.positions, bad), InputError);
+  }
+  EXPECT_TRUE(ConformalOptions{}.is_valid());
+}
+
+TEST(CheckMesh, MakeProblemAndTasksRefuseAMeshWithBadIndicesOrShape) {
+  const Mesh good = make_grid(3, 3);
+  const std::vector<std::pair<std::string, std::function<void(Mesh&)>>> cases = {
+      {"has vertex 999", [](Mesh& m) { m.F(3, 1) = 999; }},
+      {"has vertex -2", [](Mesh& m) { m.F(0, 0) = -2; }},
+      {"corners", [](Mesh& m) { m.F.conservativeResize(Eigen::NoChange, 2); }},
+      {"corners", [](Mesh& m) { m.F.conservativeResize(Eigen::NoChange, 5); }},
+      {"coordinates", [](Mesh& m) { m.V.conservativeResize(Eigen::NoChange, 1); }},
+      {"not finite", [](Mesh& m) { m.V(4, 1) = NAN; }},
+  };
+  for (const auto& [needle, spoil] : cases) {
+    Mesh m = good;
+    spoil(m);
+    try {
+      make_problem(m);
+      ADD_FAILURE() << needle << ": make_problem accepted it";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(deform(m, {{0, Eigen::Vector2d(0, 0)}}, DeformOptions{}), InputError) << needle;
+  }
+}
