@@ -10,8 +10,21 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+#include <stdexcept>
+
 #include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/measures/field_deviation.h"
+#include "strictmin/measures/measures.h"
+#include "strictmin/measures/polar.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/mesh/polycube.h"
+#include "strictmin/mesh/surface_generators.h"
+#include "strictmin/report/histogram.h"
+#include "strictmin/report/stats.h"
+#include "strictmin/report/strict_order.h"
+#include "strictmin/solvers/linf.h"
 #include "strictmin/problem/check_problem.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/conformal.h"
@@ -161,4 +174,43 @@ TEST(CheckMesh, MakeProblemAndTasksRefuseAMeshWithBadIndicesOrShape) {
     }
     EXPECT_THROW(deform(m, {{0, Eigen::Vector2d(0, 0)}}, DeformOptions{}), InputError) << needle;
   }
+}
+
+// The public helpers' contracts: sizes that disagree and empty matrices are errors, not
+// out-of-range reads (they returned values read beyond their arrays, or segfaulted).
+TEST(CheckArguments, PublicHelpersRefuseSizesThatDisagree) {
+  const Problem p = grid_problem();
+  EXPECT_THROW(field_deviation(p, Eigen::MatrixXd::Zero(3, 2)), std::invalid_argument);
+  const Eigen::VectorXd three = Eigen::VectorXd::Ones(3), two = Eigen::VectorXd::Ones(2);
+  EXPECT_THROW(distortion_stats(three, two), std::invalid_argument);
+  EXPECT_THROW(compare_strict(three, Eigen::VectorXd::Ones(5), three), std::invalid_argument);
+  EXPECT_THROW(distortion_levels(three, two, 1e-6), std::invalid_argument);
+  Eigen::VectorXd bad_weights = three;
+  bad_weights(1) = INFINITY;
+  EXPECT_THROW(distortion_histogram(three, bad_weights, 2.0), std::invalid_argument);
+  bad_weights(1) = -1;
+  EXPECT_THROW(distortion_histogram(three, bad_weights, 2.0), std::invalid_argument);
+  EXPECT_THROW(signed_singular_values(Eigen::MatrixXd(0, 0)), std::invalid_argument);
+  EXPECT_THROW(closest_rotation(Eigen::MatrixXd(0, 0)), std::invalid_argument);
+  EXPECT_THROW(rotation_angle(Eigen::MatrixXd::Identity(3, 3)), std::invalid_argument);
+  EXPECT_THROW(make_spherical_cap(0, 0), InputError);
+  EXPECT_THROW(make_polycube({}, 2), InputError);
+  EXPECT_THROW(make_polycube({{0, 0, 0}}, 0), InputError);
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  o.element_bounds(3) = INFINITY;  // free elements have a negative bound (it ended stalled)
+  EXPECT_THROW(solve_linf(p, o), InputError);
+}
+
+TEST(CheckArguments, WriteMeshRefusesWhatReadMeshWouldAndWritesNothing) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "strictmin_check_write";
+  std::filesystem::create_directories(dir);
+  Mesh m = make_grid(2, 2);
+  m.F(1, 2) = 99;
+  for (const char* name : {"m.obj", "m.off", "m.ply"}) {
+    const std::string path = (dir / name).string();
+    EXPECT_THROW(write_mesh(path, m), InputError) << name;
+    EXPECT_FALSE(std::filesystem::exists(path)) << name;
+  }
+  std::filesystem::remove_all(dir);
 }

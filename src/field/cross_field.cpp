@@ -227,7 +227,10 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   out.u = normalize_per_face(eigen.vector);
   out.energy = out.eigen_energy = field_energy(out.u, mesh, g, fr);
   if (options.unit) lower_among_unit_fields(mesh, g, fr, options, A, eps, cholesky, out);
-  if (options.pin_face >= 0 && options.pin_face < F) pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
+  if (options.pin_face >= F)
+    throw InputError("cross field: pin_face " + std::to_string(options.pin_face) + " is beyond the mesh's " +
+                     std::to_string(F) + " faces");
+  if (options.pin_face >= 0) pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
   return out;
 }
 

@@ -1,6 +1,8 @@
 #include "strictmin/measures/field_deviation.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace strictmin {
 
@@ -17,6 +19,10 @@ double field_deviation(const Problem& p, const Eigen::MatrixXd& X, int e) {
 }
 
 Eigen::VectorXd field_deviation(const Problem& p, const Eigen::MatrixXd& X) {
+  if (X.rows() != p.num_vertices || X.cols() != p.image_dim)
+    throw std::invalid_argument("field_deviation: the map is " + std::to_string(X.rows()) + " by " +
+                                std::to_string(X.cols()) + ", the problem's vertices " +
+                                std::to_string(p.num_vertices) + " by " + std::to_string(p.image_dim));
   Eigen::VectorXd d(p.num_elements());
   for (int e = 0; e < p.num_elements(); ++e) d(e) = field_deviation(p, X, e);
   return d;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace strictmin {
 namespace {
@@ -47,6 +48,7 @@ std::optional<Measure> parse_measure(const std::string& name) {
 }
 
 Eigen::VectorXd signed_singular_values(const Eigen::MatrixXd& J) {
+  if (J.size() == 0) throw std::invalid_argument("signed_singular_values: an empty matrix");
   if (is_2x2(J)) {
     const Conformal2 c(J);
     return Eigen::Vector2d(c.norm_a() + c.norm_b(), c.norm_a() - c.norm_b());
@@ -58,6 +60,7 @@ Eigen::VectorXd signed_singular_values(const Eigen::MatrixXd& J) {
 }
 
 Eigen::MatrixXd closest_rotation(const Eigen::MatrixXd& J) {
+  if (J.size() == 0) throw std::invalid_argument("closest_rotation: an empty matrix");
   if (is_2x2(J)) {
     // R = rot(atan2(c - b, a + d)) for J = [[a, b], [c, d]]: the direction of a.
     const Conformal2 c(J);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <stdexcept>
 
 #include "strictmin/measures/measures.h"
 
@@ -17,7 +18,10 @@ Polar polar_decomposition(const Eigen::MatrixXd& J) {
   return p;
 }
 
-double rotation_angle(const Eigen::MatrixXd& R) { return std::atan2(R(1, 0), R(0, 0)); }
+double rotation_angle(const Eigen::MatrixXd& R) {
+  if (R.rows() != 2 || R.cols() != 2) throw std::invalid_argument("rotation_angle: a 2 by 2 rotation is needed");
+  return std::atan2(R(1, 0), R(0, 0));
+}
 
 Eigen::MatrixXd rotation_2d(double angle) {
   Eigen::Matrix2d R;

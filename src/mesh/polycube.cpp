@@ -4,10 +4,16 @@
 #include <map>
 #include <random>
 #include <set>
+#include <string>
+
+#include "strictmin/io/input_error.h"
 
 namespace strictmin {
 
 Mesh make_polycube(const std::vector<std::array<int, 3>>& cubes, int n, double scale, unsigned seed) {
+  if (cubes.empty() || n < 1 || !(scale > 0 && std::isfinite(scale)))
+    throw InputError("make_polycube: at least one cube, n >= 1 and a positive scale (got " +
+                     std::to_string(cubes.size()) + " cubes, n = " + std::to_string(n) + ")");
   const std::set<std::array<int, 3>> occupied(cubes.begin(), cubes.end());
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);

@@ -3,7 +3,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
+#include <string>
 
+#include "strictmin/io/input_error.h"
 #include "strictmin/mesh/generators.h"
 
 namespace strictmin {
@@ -42,6 +44,9 @@ Mesh make_tilted_plane(int nx, int ny) {
 }
 
 Mesh make_spherical_cap(int rings, int sectors, double max_polar) {
+  if (rings < 1 || sectors < 3 || !(max_polar > 0 && max_polar <= std::numbers::pi))
+    throw InputError("make_spherical_cap: rings >= 1, sectors >= 3 and max_polar in (0, pi] (got " +
+                     std::to_string(rings) + ", " + std::to_string(sectors) + ", " + std::to_string(max_polar) + ")");
   Mesh m;
   m.V.resize(1 + rings * sectors, 3);
   m.V.row(0) << 0, 0, 1;

@@ -304,7 +304,7 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
   Validator(mesh, source).run(warnings, check_geometry);
 }
 
-void check_mesh_structure(const Mesh& mesh, const std::string& source) {
+void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
   const std::string name = source.empty() ? std::string("mesh") : source;
   if (mesh.F.rows() > 0 && mesh.F.cols() != 3 && mesh.F.cols() != 4)
     throw InputError(name + ": elements have " + std::to_string(mesh.F.cols()) +
@@ -313,7 +313,7 @@ void check_mesh_structure(const Mesh& mesh, const std::string& source) {
     throw InputError(name + ": vertices have " + std::to_string(mesh.V.cols()) + " coordinates (need 2 or 3)");
   if (mesh.F.rows() > 0 && mesh.F.cols() == 4 && mesh.V.cols() != 3)
     throw InputError(name + ": tetrahedra need 3D vertex coordinates");
-  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+  for (Eigen::Index v = 0; require_finite && v < mesh.V.rows(); ++v)
     if (!mesh.V.row(v).allFinite())
       throw InputError(name + ": vertex " + std::to_string(v) + " (0-based) has a coordinate that is not finite");
   const char* noun = mesh.F.cols() == 4 ? "tet " : "face ";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace strictmin {
 
@@ -16,6 +17,8 @@ Histogram distortion_histogram(const Eigen::VectorXd& d, const Eigen::VectorXd& 
   h.percent.assign(bins, 0.0);
   double total = 0;
   for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (!(std::isfinite(w(i)) && w(i) >= 0))
+      throw std::invalid_argument("distortion_histogram: weight " + std::to_string(i) + " is not a finite non-negative number");
     const double x = d(i);
     int b = bins - 1;
     if (!std::isnan(x) && x < hi) b = std::clamp(static_cast<int>(std::floor(x / hi * bins)), 0, bins - 1);

@@ -2,10 +2,15 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace strictmin {
 
 DistortionStats distortion_stats(const Eigen::VectorXd& d, const Eigen::VectorXd& w) {
+  if (w.size() != d.size())
+    throw std::invalid_argument("distortion_stats: " + std::to_string(d.size()) + " values and " +
+                                std::to_string(w.size()) + " weights");
   DistortionStats s;
   s.elements = static_cast<int>(d.size());
   if (d.size() == 0) return s;

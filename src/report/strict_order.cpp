@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace strictmin {
 namespace {
@@ -27,6 +29,9 @@ double take_level(const Eigen::VectorXd& d, const Eigen::VectorXd& w, const std:
 }  // namespace
 
 std::vector<DistortionLevel> distortion_levels(const Eigen::VectorXd& d, const Eigen::VectorXd& w, double tolerance) {
+  if (w.size() != d.size())
+    throw std::invalid_argument("distortion_levels: " + std::to_string(d.size()) + " values and " +
+                                std::to_string(w.size()) + " weights");
   const std::vector<int> order = descending(d);
   std::vector<DistortionLevel> levels;
   size_t pos = 0;
@@ -43,6 +48,10 @@ std::vector<DistortionLevel> distortion_levels(const Eigen::VectorXd& d, const E
 
 StrictComparison compare_strict(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& w,
                                 double value_tolerance, double area_tolerance) {
+  if (a.size() != b.size() || w.size() != a.size())
+    throw std::invalid_argument("compare_strict: the two distortion vectors and the weights must have one entry per "
+                                "element (got " + std::to_string(a.size()) + ", " + std::to_string(b.size()) + ", " +
+                                std::to_string(w.size()) + ")");
   const std::vector<int> oa = descending(a), ob = descending(b);
   const double area_eps = area_tolerance * w.sum();
   StrictComparison c;

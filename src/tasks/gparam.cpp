@@ -24,6 +24,8 @@ void check_options(const GParamOptions& o) {
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
+  if (o.curvature_field && !(o.curvature_alignment > 0 && std::isfinite(o.curvature_alignment)))
+    throw InputError("--curvature-alignment must be a positive number");
 }
 
 // The texture coordinates are the map divided by the edge length: an edge length far out of

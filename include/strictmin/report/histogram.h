@@ -17,13 +17,14 @@ struct Histogram {
 // Bins `distortion` (#E) weighted by `weights` (#E, e.g. rest areas) into `bins` bins over
 // [0, hi]. Values below 0 go in the first bin, values >= hi (+infinity, NaN) in the last one,
 // so the shares always sum to 100 %. Throws std::invalid_argument on mismatched sizes,
-// bins < 1, hi <= 0 or a total weight <= 0.
+// bins < 1, hi <= 0, a weight that is negative or not finite, or a total weight <= 0.
 Histogram distortion_histogram(const Eigen::VectorXd& distortion, const Eigen::VectorXd& weights, double hi,
                                int bins = 40);
 
-// A round upper end for histograms of these vectors: the largest finite value rounded up to
 // Distortion values at or below this are zero to rounding in reports (an exact map's 1e-14).
 inline constexpr double kZeroDistortionShown = 1e-9;
+
+// A round upper end for histograms of these vectors: the largest finite value rounded up to
 // 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten (at least `at_least`; 1 when
 // nothing is finite or every value is zero to rounding).
 double histogram_upper(const std::vector<const Eigen::VectorXd*>& distortions, double at_least = 0);
