@@ -19,6 +19,7 @@
 #include <tbb/task_group.h>
 
 #include "linf_main_solve.h"
+#include "solvers/join_on_exit.h"
 #include "linf_phase1.h"
 #include "linf_program.h"
 #include "linf_warm_start.h"
@@ -210,13 +211,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   const bool prepare = mp.num_x > 0 && mp.has_k;
   if (prepare)
     analysis.run([&] { normal_equations = std::make_unique<socp::NormalEquations>(mp.prog, settings); });
-  struct JoinOnExit {  // every return path waits for the task (it references locals)
-    tbb::task_group& g;
-    bool active;
-    ~JoinOnExit() {
-      if (active) g.wait();
-    }
-  } join_on_exit{analysis, prepare};
+  const JoinOnExit join_on_exit(analysis, prepare);  // every way out waits for the task (it references locals)
   socp::WeightedLeastSquares ls(mp.prog, held_by_equalities);
   if (!ls.ok()) {
     result.status = SolveStatus::NumericalError;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <tbb/task_group.h>
 
+#include "solvers/join_on_exit.h"
 #include "solvers/linf_active_set.h"
 #include "solvers/socp/fd_program.h"
 #include "strictmin/solvers/timing.h"
@@ -98,6 +99,7 @@ void ActiveSetPolicy::probe(const socp::IpmState& s, double tol, BestSoFar& best
   const bool beside = !early_region.empty();
   ActiveSetSolve early_map;
   tbb::task_group map_beside;
+  const JoinOnExit join_map(map_beside);  // an exception from the bound's solve waits for the map
   if (beside) map_beside.run([&] { early_map = solve_map(early_region, heading); });
   const double bound = restricted_bound(probe_elements_, mp_.problem.with_free_dofs(s.x), best);
   map_beside.wait();
@@ -198,6 +200,7 @@ void ActiveSetPolicy::try_bound(const std::vector<int>& chosen, const Eigen::Mat
   const std::vector<int> region = map_region(chosen);
   ActiveSetSolve early_map;
   tbb::task_group map_beside;
+  const JoinOnExit join_map(map_beside);  // an exception from the bound's solve waits for the map
   map_beside.run([&] { early_map = solve_map(region, X); });
   bound_ = restricted_bound(chosen, X, best);
   map_beside.wait();
