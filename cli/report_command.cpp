@@ -119,10 +119,6 @@ Eigen::MatrixXd read_positions(const std::string& path) {
   return V;
 }
 
-// Runs are compared (ranked, one colour scale, one histogram) only when they map one problem:
-// the same input file (wherever the summaries are: two "m.obj" in two folders are two
-// meshes), task, measure and element count, and the same handles (their count), field and
-// edge length where the task has them.
 // The input as one absolute path (a built-in example as its name).
 std::string input_location(const std::string& input, const std::string& file) {
   if (input.empty() || input.rfind("example:", 0) == 0) return input;
@@ -131,6 +127,10 @@ std::string input_location(const std::string& input, const std::string& file) {
   return ec ? input : resolved.string();
 }
 
+// Runs are compared (ranked, one colour scale, one histogram) only when they map one problem:
+// the same input file (wherever the summaries are: two "m.obj" in two folders are two
+// meshes), task, measure and element count, and the same handles (their count), field and
+// edge length where the task has them.
 std::string problem_key(const nlohmann::json& s, const std::string& input, const std::string& file) {
   std::string key = input_location(input, file);
   for (const char* part : {"task", "measure", "elements", "handles", "field", "edge_length"})
@@ -263,7 +263,9 @@ std::string section_title(const LoadedRun& run, const std::vector<LoadedRun>& al
   if (elsewhere) return where;  // two files of one name: the path tells them apart
   const std::string title = input_title(run.input);
   const auto& s = run.summary;
-  auto part = [&](const char* key) { return s.contains(key) && s[key].is_string() ? s[key].get<std::string>() : std::string(); };
+  auto part = [&](const char* key) {
+    return s.contains(key) && s[key].is_string() ? s[key].get<std::string>() : std::string();
+  };
   std::string what = part("task");
   if (!part("measure").empty()) what += (what.empty() ? "" : ", ") + std::string("measure ") + part("measure");
   if (s.contains("handles") && s["handles"].is_number()) what += ", " + s["handles"].dump() + " handles";
@@ -299,8 +301,12 @@ int run_report(ReportCommandArgs a) {
   std::set<std::string> used_ids;
   bool all_solved = true;
   for (const auto& problem : problems) {
-    const LoadedRun& first = *std::find_if(loaded.begin(), loaded.end(), [&](const LoadedRun& r) { return r.problem == problem; });
+    const LoadedRun& first =
+        *std::find_if(loaded.begin(), loaded.end(), [&](const LoadedRun& r) { return r.problem == problem; });
     const std::string input = first.input;
+    std::map<std::string, int> runs_of_method;  // a method run twice: each run named by its file
+    for (const auto& r : loaded)
+      if (r.problem == problem) ++runs_of_method[r.run.method];
     SectionInput in;
     in.id = section_id(input, used_ids);
     in.title = section_title(first, loaded);
@@ -320,7 +326,8 @@ int run_report(ReportCommandArgs a) {
       stems.insert(stem);
       r.run.view_name = stem;
       // Two runs of one method on one problem (other options): told apart by their files.
-      if (stem != r.run.method) r.run.label = method_label(r.run.method) + " (" + fs::path(r.file).filename().string() + ")";
+      if (runs_of_method[r.run.method] > 1)
+        r.run.label = method_label(r.run.method) + " (" + fs::path(r.file).filename().string() + ")";
       fs::create_directories(fs::path(a.dir) / in.id, ec);
       if (ec) throw InputError("cannot create " + (fs::path(a.dir) / in.id).string() + ": " + ec.message());
       write_file_atomically((fs::path(a.dir) / in.id / (stem + ".json")).string(),

@@ -93,6 +93,7 @@ class Report(unittest.TestCase):
         self.assertTrue(any("measure fd" in s for s in sections), sections)
         self.assertNotIn("is less distorting than L∞ (least maximum) (arap", html)
         self.assertIn("L∞ (least maximum) (capped.json) (not solved: max-iterations)", html)
+        self.assertIn("L∞ (least maximum) (linf.json)", html)  # both runs of linf named by their files
         # Two files named m.obj: two sections, titled by their paths.
         square = "v 0 0\nv 1 0\nv 1 1\nv 0 1\nv 0.5 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
         strip = "v 0 0\nv 2 0\nv 2 1\nv 0 1\nv 1 0.5\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
