@@ -331,6 +331,7 @@ class Eval(unittest.TestCase):
         self.assertIn("given map", html)
         self.assertIn("mapped.obj", html)
         self.assertNotIn("certified lower bound", html)  # a given map has no solver bound
+        self.assertIn("evaluated (no solve)", html)  # nor a solve to be "solved"
         # A UV map: the surface view, its UV layout and checkerboard.
         c, sn = math.cos(math.pi / 3), math.sin(math.pi / 3)
         obj = write(os.path.join(self.dir, "uv.obj"), f"v 0 0 0\nv 1 0 0\nv 1 {c} {sn}\nv 0 {c} {sn}\n"
