@@ -21,6 +21,7 @@ struct InterpArgs {
   std::vector<double> times{0.5};
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
+  LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start (docs/interp.md)
   SolverArgs solver;
   OutputOptions out;
   ReportArgs report;
@@ -88,30 +89,33 @@ int run_interp(const InterpArgs& a) {
   options.solver = make_solver_options(a.solver, a.out);
   options.local_global.max_iterations = a.lg_iterations;
   options.local_global.relative_change = a.lg_tolerance;
+  apply_local_global_step_options(a.lg_steps, options.local_global);
   options.pin_vertex = parse_pin(a.pin);
   if (a.times.empty()) throw InputError("--t needs at least one time in [0, 1]");
-  for (size_t i = 0; i < a.times.size(); ++i) {
-    const double t = a.times[i];
+  std::vector<double> times = a.times;
+  for (double& t : times) t += 0.0;  // -0 is 0 (it wrote PREFIX_-0 beside PREFIX_0, the same frame)
+  for (size_t i = 0; i < times.size(); ++i) {
+    const double t = times[i];
     char shown[32];
     std::snprintf(shown, sizeof shown, "%g", t);
     if (!(t >= 0.0 && t <= 1.0)) throw InputError(std::string("--t: ") + shown + " is outside [0, 1]");
     // Times printed alike name one file (%g: 0.33333333 and 0.333333334 both give 0.333333).
     for (size_t j = 0; j < i; ++j) {
       char other[32];
-      std::snprintf(other, sizeof other, "%g", a.times[j]);
+      std::snprintf(other, sizeof other, "%g", times[j]);
       if (std::string(other) == shown)
         throw InputError(std::string("--t: ") + shown + " is given twice" +
-                         (a.times[j] == t ? "" : " (as printed in the frame's file name, %g)") +
+                         (times[j] == t ? "" : " (as printed in the frame's file name, %g)") +
                          " (each time writes its own file)");
     }
   }
-  if (!a.out.distortion.empty() && a.times.size() != 1)
+  if (!a.out.distortion.empty() && times.size() != 1)
     throw InputError("--distortion writes one frame: give a single --t value with it");
   // Every frame's file with the other outputs, and none of them a pose (-o lion with
   // t = 1 writes lion_1.obj, which may be the target).
   std::vector<std::pair<std::string, std::string>> frame_outputs;
   if (!a.output.empty())
-    for (double t : a.times) frame_outputs.push_back({"--output", frame_path(a.output, t, a.source)});
+    for (double t : times) frame_outputs.push_back({"--output", frame_path(a.output, t, a.source)});
   check_run_outputs(a.out, frame_outputs, a.report.dir, {{"the source pose", a.source}, {"the target pose", a.target}});
   if (!a.out.quiet)
     options.local_global.progress = [](const IterationRecord& r) {
@@ -129,14 +133,14 @@ int run_interp(const InterpArgs& a) {
     throw InputError("--pin " + a.pin + ": " + a.source + " has " + std::to_string(source.num_vertices()) +
                      " vertices (0-based indices)");
   progress(a.out, "interp: " + std::to_string(source.num_elements()) + " elements (" + interp_kind_name(interp.kind()) +
-                      "), method " + a.solver.method + ", " + std::to_string(a.times.size()) + " frame(s)");
+                      "), method " + a.solver.method + ", " + std::to_string(times.size()) + " frame(s)");
 
   nlohmann::json s = interp_summary(source, interp.kind(), options, a.source, a.target);
   nlohmann::json frames = nlohmann::json::array();
   SolveStatus worst = SolveStatus::Solved;
   Eigen::VectorXd last_distortion;
   std::vector<InterpFrame> kept;  // for the report
-  for (double t : a.times) {
+  for (double t : times) {
     const auto tf = std::chrono::steady_clock::now();
     progress(a.out, "interp: t = " + std::to_string(t));
     const InterpFrame f = interp.at(t, options);
@@ -198,6 +202,8 @@ void add_interp_command(CLI::App& app, int& exit_code) {
                   "Stop when the maximum changes by less than this (relative)")
       ->capture_default_str()
       ->check(at_least(0));
+  add_local_global_step_options(*cmd, args->lg_steps);
+  args->solver.k_min = kInterpKMin;  // interp's own default (interp.h), shown in --help
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   // Frames are close to their blended shapes: an automatic colour scale by default (a fixed

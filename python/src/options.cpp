@@ -5,6 +5,7 @@
 
 #include "convert.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/tasks/interp.h"
 
 namespace py = pybind11;
 
@@ -106,6 +107,7 @@ void check_task_ranges(const TaskOptions& o, Task task, const std::string& key) 
 TaskOptions parse_options(Task task, const std::string& function, const std::string& method,
                           const py::dict& options) {
   TaskOptions o;
+  if (task == Task::Interp) o.solver.direct.k_min = kInterpKMin;  // interp's own default (interp.h)
   for (const auto& [k, v] : options) {
     const std::string key = py::str(k);
     if (!apply(o, task, key, v))

@@ -105,9 +105,25 @@ class Interp(unittest.TestCase):
         # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
         self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
         self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)
+        # -0 is 0 (it wrote PREFIX_0 and PREFIX_-0, one frame twice).
+        self.assertIn("0 is given twice", run("interp", self.src, self.dst, "--t", "0,-0", check_code=1).stderr)
         self.assertIn("--pin", run("interp", self.src, self.dst, "--pin", "middle", check_code=1).stderr)
         self.assertIn("single --t", run("interp", self.src, self.dst, "--t", "0.2,0.4", "--distortion",
                                         os.path.join(self.dir, "d.txt"), check_code=1).stderr)
+
+    def test_direct_runs_its_levels_below_the_papers_k_min(self):
+        # This bar's distortion at t = 0.5 is about 1.3e-3: with the parametrizations' k_min 0.1
+        # direct stopped after its first level (linf's map, "solved"). interp's default is 0.
+        def levels(*extra):
+            s = json.loads(run("interp", self.src, self.dst, "--t", "0.5", "--method", "direct", "--delta-k", "1e-5",
+                               "--summary", "-", "--quiet", *extra).stdout)
+            return s["frames"][0]["message"]
+        self.assertIn("every element fixed after", levels())
+        self.assertNotIn("after 1 levels", levels())
+        self.assertIn("the level fell to k_min after 1 levels", levels("--k-min", "0.1"))
+        # The local-global step options of docs/interp.md are accepted (they were refused).
+        run("interp", self.src, self.dst, "--t", "0.5", "--lg-acceleration", "0", "--lg-extrapolation", "0",
+            "--lg-cold-start", "--quiet")
 
     def test_report_command_points_to_interps_own_report(self):
         summary = os.path.join(self.dir, "ip.json")

@@ -26,7 +26,14 @@ namespace strictmin {
 enum class InterpKind { Planar, Surface, Tets };
 std::string interp_kind_name(InterpKind k);  // "planar", "surface", "tets"
 
+// direct's k_min for interpolation: 0, every element fixed. The paper's 0.1 is a level of
+// field deviation on parametrizations; an interpolation's distortion is often below it
+// everywhere (the tet bar at t = 0.5: 0.02), where direct stopped after its first level and
+// returned the L-infinity map.
+inline constexpr double kInterpKMin = 0.0;
+
 struct InterpOptions {
+  InterpOptions() { solver.direct.k_min = kInterpKMin; }
   SolverOptions solver;             // the global step's method (exact is not available)
   LocalGlobalOptions local_global;  // max_iterations (0: the FD solve only), relative_change, progress
   int pin_vertex = -1;              // -1: pin the centroid (vertex mean) of every connected part
