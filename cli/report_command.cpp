@@ -231,7 +231,10 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
     progress(out, "warning: " + file + ": input mesh not found; histogram areas are the output's");
   }
   r.run.method = text("method").empty() ? "result" : text("method");
-  r.run.flipped = s.contains("flipped") && s["flipped"].is_number_integer() ? s["flipped"].get<int>() : 0;
+  // null: not defined (a surface in 3D); absent (older summaries): taken as none.
+  r.run.flipped = s.contains("flipped") && s["flipped"].is_number_integer() ? s["flipped"].get<int>()
+                  : s.contains("flipped") && s["flipped"].is_null()     ? -1
+                                                                        : 0;
   r.run.lower_bound = number("lower_bound");
   r.run.time_s = std::isfinite(number("solver_time_s")) ? number("solver_time_s") : number("time_s");
   r.run.status = text("status").empty() ? "solved" : text("status");

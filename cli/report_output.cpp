@@ -67,7 +67,8 @@ MethodRun method_run(const std::string& method, const InterpFrame& f) {
   r.mapped = f.mesh;
   r.distortion = f.result.distortion;
   r.weights = f.weights;
-  r.flipped = f.stats.flipped;
+  const bool surface = f.mesh.element_type() == ElementType::Triangle && f.mesh.dim() == 3 && !f.mesh.is_planar();
+  r.flipped = surface ? -1 : f.stats.flipped;  // null in the summary: no orientation in 3D
   r.time_s = f.result.time_s;
   r.status = status_name(f.result.status);
   r.message = f.result.message;

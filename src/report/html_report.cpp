@@ -121,8 +121,11 @@ void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
       m.distortion.size() > 0)
     h << "<tr><td>area with distortion \u2265 " << number(0.9 * kstar, 3) << " (90% of the least max)</td><td class=\"v\">"
       << number(area_percent_at_or_above(m.distortion, m.weights, 0.9 * kstar), 3) << "%</td></tr>\n";
-  h << "<tr><td>flipped elements</td><td class=\"v\">" << m.stats.flipped << " of " << m.stats.elements
-    << "</td></tr>\n";
+  if (m.stats.flipped < 0)  // a surface in 3D: its 3 by 2 Jacobians have no orientation
+    h << "<tr><td>flipped elements</td><td class=\"v\">not defined (surface)</td></tr>\n";
+  else
+    h << "<tr><td>flipped elements</td><td class=\"v\">" << m.stats.flipped << " of " << m.stats.elements
+      << "</td></tr>\n";
   h << "<tr><td>time</td><td class=\"v\">" << seconds(m.time_s) << "</td></tr>\n";
   const bool ok = m.status == "solved";
   // A given map (strictmin eval) was measured, not solved for: its summary's "solved" means usable.

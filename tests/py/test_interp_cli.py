@@ -132,6 +132,29 @@ class Interp(unittest.TestCase):
         p = run("report", os.path.join(self.dir, "R"), summary, check_code=1)
         self.assertIn("interp ... --report DIR", p.stderr)
 
+    def test_report_of_a_surface_says_flips_are_not_defined(self):
+        # On a surface in 3D the summary's flipped is null (no orientation): the report said
+        # "flipped elements 0 of N".
+        def bumpy(path, lift):
+            lines = [f"v {i} {j} {lift * math.sin(i) * math.cos(j)}" for j in range(4) for i in range(4)]
+            lines += [f"f {1 + i + 4 * j} {2 + i + 4 * j} {6 + i + 4 * j}\nf {1 + i + 4 * j} {6 + i + 4 * j} {5 + i + 4 * j}"
+                      for j in range(3) for i in range(3)]
+            with open(path, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            return path
+        src, dst = bumpy(os.path.join(self.dir, "s.obj"), 0.3), bumpy(os.path.join(self.dir, "d.obj"), 0.8)
+        summary = os.path.join(self.dir, "bumpy.json")
+        rep = os.path.join(self.dir, "bumpy")
+        run("interp", src, dst, "--t", "0.5", "--summary", summary, "--report", rep, "--quiet", check_code=0)
+        with open(summary) as f:
+            s = json.load(f)
+        self.assertEqual(s["kind"], "surface")
+        self.assertIsNone(s["frames"][0]["flipped"])
+        with open(os.path.join(rep, "index.html")) as f:
+            html = f.read()
+        self.assertIn("not defined (surface)", html)
+        self.assertNotIn("flipped elements</td><td class=\"v\">0 of", html)
+
     def test_exact_frames_of_a_surface_are_solved(self):
         # t = 0 and t = 1 reproduce the poses: local-global stops at once. On lion's surface the
         # rest frames leave about 1e-11 (6e-12 here), which the zero test at 1e-12 missed: both

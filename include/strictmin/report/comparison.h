@@ -23,7 +23,7 @@ struct MethodRun {
   Mesh mapped;                 // the rest mesh's elements at the map's positions (a deformation), or a surface with UVs
   Eigen::VectorXd distortion;  // #E
   Eigen::VectorXd weights;     // #E rest areas / volumes
-  int flipped = 0;
+  int flipped = 0;             // -1: not defined (a 3 by 2 Jacobian, a surface in 3D, has no orientation)
   double lower_bound = std::numeric_limits<double>::quiet_NaN();
   double time_s = std::numeric_limits<double>::quiet_NaN();
   std::string status = "solved";
