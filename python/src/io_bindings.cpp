@@ -12,9 +12,11 @@ namespace py = pybind11;
 namespace strictmin::python {
 namespace {
 
-py::tuple read(const std::string& path) {
+py::tuple read(const std::string& path, bool check_geometry) {
   std::vector<std::string> warnings;
-  const Mesh mesh = read_mesh(path, &warnings);
+  MeshReadOptions options;
+  options.check_geometry = check_geometry;
+  const Mesh mesh = read_mesh(path, &warnings, options);
   py::list w;
   for (const auto& s : warnings) w.append(s);
   return py::make_tuple(RowMatrixXd(mesh.V), RowMatrixXi(mesh.F), w);
@@ -43,7 +45,8 @@ void write(const std::string& path, const RowMatrixXd& V, const RowMatrixXi& F, 
 }  // namespace
 
 void bind_io(py::module_& m) {
-  m.def("read_mesh", &read, py::arg("path"), "(V, F, warnings) of a .obj, .off or .mesh file (validated)");
+  m.def("read_mesh", &read, py::arg("path"), py::arg("check_geometry") = true,
+        "(V, F, warnings) of a .obj, .off or .mesh file (validated; check_geometry=False: no area/orientation checks)");
   m.def("write_mesh", &write, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("uv") = py::none(),
         py::arg("quality") = py::none(), "Write a mesh (.obj, .off, .mesh, .ply), with UVs and per-element quality");
 }

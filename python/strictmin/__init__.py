@@ -127,13 +127,17 @@ def _progress(progress, verbose):
     return both
 
 
-def read_mesh(path):
+def read_mesh(path, *, check_geometry=True):
     """V, F of a mesh file (.obj, .off, .mesh), validated as the command line validates it.
 
     V is #V by 2 or 3 (float64), F #F by 3 (triangles) or #F by 4 (tets), 0-based (int32).
-    Raises ValueError naming the file, line and reason; warnings (unreferenced vertices)
-    go to the warnings module."""
-    V, F, notes = _strictmin.read_mesh(str(path))
+    ``check_geometry=False`` skips the zero-area/volume and orientation checks, as the command
+    line does for a map's image (an interpolation target, a frame or a deformation with
+    flipped elements). Raises ValueError naming the file, line and reason; warnings
+    (unreferenced vertices) go to the warnings module."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"read_mesh: path must be a str or os.PathLike, not {type(path).__name__}")
+    V, F, notes = _strictmin.read_mesh(os.fsdecode(os.fspath(path)), bool(check_geometry))
     for note in notes:
         warnings.warn(note, stacklevel=2)
     return np.ascontiguousarray(V), np.ascontiguousarray(F)

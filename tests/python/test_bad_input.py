@@ -170,3 +170,18 @@ def test_surface_deforms_in_3d(square):
     assert r.usable
     assert r.positions.shape == surface.shape
     assert r.distortion.max() < 1e-6
+
+
+def test_read_mesh_of_a_flipped_map(tmp_path):
+    # A map's image with a flipped triangle (an interpolation target, a frame): the command
+    # line reads it without the geometry checks; read_mesh could not (no option).
+    path = tmp_path / "flipped.obj"
+    path.write_text("v 0 0\nv 1 0\nv 0 1\nv 0.2 0.2\nf 1 2 3\nf 2 4 3\n")  # vertex 3 folded over: f 2 is clockwise
+    with pytest.raises(ValueError):
+        strictmin.read_mesh(path)
+    V, F = strictmin.read_mesh(path, check_geometry=False)
+    assert V.shape == (4, 2) and F.shape == (2, 3)
+    with pytest.raises(TypeError, match="path must be a str"):
+        strictmin.read_mesh(None)
+    with pytest.raises(TypeError, match="path must be a str"):
+        strictmin.read_mesh(b"flipped.obj")
