@@ -13,7 +13,17 @@
 
 namespace strictmin {
 
-L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_((check_problem(p, "l2"), p.free_index())) {
+namespace {
+
+// The problem's free-vertex index, after its contract is checked (free_index reads `fixed`).
+std::vector<int> checked_free_index(const Problem& p) {
+  check_problem(p, "l2");
+  return p.free_index();
+}
+
+}  // namespace
+
+L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(checked_free_index(p)) {
   if (p.has_equalities() && options.complex_equalities) {
     if (auto basis = complex_equality_basis(p)) {
       complex_ = std::make_shared<ComplexL2>(std::move(*basis));
