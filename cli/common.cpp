@@ -134,6 +134,12 @@ void check_output_paths(const std::vector<std::pair<std::string, std::string>>& 
   }
 }
 
+std::string shown_number(double value, int significant) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", significant, value);
+  return text;
+}
+
 std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

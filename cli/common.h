@@ -68,6 +68,10 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
 // before the solve (an .off or .ply would silently keep the input alone). param, whose map is
 // one vt per vertex, writes other formats without it, as documented.
 void check_uv_output_path(const std::string& path);
+// A number for messages and file names, printf's %g with `significant` digits: as a user
+// wrote it (-1e-10, 0.25), where std::to_string prints -0.000000 and 0.250000.
+std::string shown_number(double value, int significant = 6);
+
 // The file name's extension in lower case (".obj"; empty when none).
 std::string lowercase_extension(const std::string& path);
 

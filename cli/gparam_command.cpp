@@ -37,13 +37,6 @@ struct GParamArgs {
 // --field's built-in fields; anything else is a field file.
 bool is_field_name(const std::string& field) { return field == "smoothest" || field == "curvature" || field == "unit"; }
 
-// A number as given, for messages (%g: -1e-10, not std::to_string's -0.000000).
-std::string shown(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   GParamOptions o;
   const auto measure = parse_measure(a.measure);
@@ -52,14 +45,14 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   o.measure = *measure;
   if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
   if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
-    throw InputError("--edge-length must be a positive finite number, got " + shown(a.edge_length));
+    throw InputError("--edge-length must be a positive finite number, got " + shown_number(a.edge_length));
   if (a.quads_given && a.quads <= 0) throw InputError("--quads must be positive, got " + std::to_string(a.quads));
   if (a.edge_length_given) o.edge_length = a.edge_length;
   if (a.quads_given) o.quads = a.quads;
   o.curvature_field = a.field == "curvature";
   o.field_options.unit = a.field == "unit";
   if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
-    throw InputError("--curvature-alignment must be a positive number, got " + shown(a.curvature_alignment));
+    throw InputError("--curvature-alignment must be a positive number, got " + shown_number(a.curvature_alignment));
   o.curvature_alignment = a.curvature_alignment;
   o.parallel_field = a.parallel;
   if (!a.cones.empty()) {
@@ -115,7 +108,7 @@ int run_gparam(const GParamArgs& a) {
     progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g)));
   progress(a.out, "gparam: max distortion " + std::to_string(g.measured.stats.max) + ", L2 " +
                       std::to_string(g.measured.stats.l2) + ", " + std::to_string(g.measured.stats.flipped) +
-                      " flipped, seam error " + shown(g.seam_error) + ", " + status_name(g.result.status));
+                      " flipped, seam error " + shown_number(g.seam_error) + ", " + status_name(g.result.status));
   return exit_code_for(g.result.status);
 }
 

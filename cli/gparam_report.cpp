@@ -1,21 +1,11 @@
 #include "gparam_report.h"
 
-#include <cstdio>
 #include <filesystem>
 
+#include "common.h"
 #include "strictmin/report/html_report.h"
 
 namespace strictmin::cli {
-namespace {
-
-// The largest transition violation as it is (3.3e-14; std::to_string printed 0.000000).
-std::string seam_error_text(double e) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g", e);
-  return text;
-}
-
-}  // namespace
 
 GParamMarks gparam_marks(const Mesh& mesh, const GParamOutcome& g) {
   GParamMarks m;
@@ -70,7 +60,7 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                    std::to_string(mesh.num_elements()) + " triangles, Euler characteristic " +
                    std::to_string(g.graph.euler_characteristic()) + ", " + std::to_string(g.singular.size()) +
                    " singularities (white dots: positive index, black dots: negative), " + std::to_string(g.cut.num_cut_edges) +
-                   " seam edges (dark red), seam error " + seam_error_text(g.seam_error) + ".";
+                   " seam edges (dark red), seam error " + shown_number(g.seam_error, 2) + ".";
   in.measure = measure_description(summary.value("measure", std::string("fd")));
   in.rest = &mesh;
   run.view_name = "view";

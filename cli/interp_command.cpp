@@ -1,7 +1,6 @@
 // strictmin interp SOURCE TARGET --t 0.25,0.5,0.75 -o PREFIX [--method l2|linf|...]
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -29,11 +28,9 @@ struct InterpArgs {
 
 // "PREFIX_0.25.obj": t printed with %g, the extension taken from SOURCE.
 std::string frame_path(const std::string& prefix, double t, const std::string& source) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "_%g", t);
   std::string ext = std::filesystem::path(source).extension().string();
   if (ext.empty()) ext = ".obj";
-  return prefix + buf + ext;
+  return prefix + "_" + shown_number(t) + ext;
 }
 
 // interp --report DIR: one section, the source pose then every frame side by side in one
@@ -52,11 +49,10 @@ std::string write_interp_report(const ReportArgs& a, const nlohmann::json& summa
   in.rest = &source;
   in.alternatives = false;  // frames of one sequence, not rival maps
   for (const InterpFrame& f : frames) {
-    char t[32];
-    std::snprintf(t, sizeof t, "%g", f.t);
+    const std::string t = shown_number(f.t);
     MethodRun run = method_run(method, f);
-    run.label = std::string("t = ") + t;
-    run.view_name = std::string("t") + t;
+    run.label = "t = " + t;
+    run.view_name = "t" + t;
     run.links.emplace_back("summary.json", "summary.json");
     in.runs.push_back(std::move(run));
   }
@@ -96,15 +92,12 @@ int run_interp(const InterpArgs& a) {
   for (double& t : times) t += 0.0;  // -0 is 0 (it wrote PREFIX_-0 beside PREFIX_0, the same frame)
   for (size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
-    char shown[32];
-    std::snprintf(shown, sizeof shown, "%g", t);
-    if (!(t >= 0.0 && t <= 1.0)) throw InputError(std::string("--t: ") + shown + " is outside [0, 1]");
+    const std::string shown = shown_number(t);
+    if (!(t >= 0.0 && t <= 1.0)) throw InputError("--t: " + shown + " is outside [0, 1]");
     // Times printed alike name one file (%g: 0.33333333 and 0.333333334 both give 0.333333).
     for (size_t j = 0; j < i; ++j) {
-      char other[32];
-      std::snprintf(other, sizeof other, "%g", times[j]);
-      if (std::string(other) == shown)
-        throw InputError(std::string("--t: ") + shown + " is given twice" +
+      if (shown_number(times[j]) == shown)
+        throw InputError("--t: " + shown + " is given twice" +
                          (times[j] == t ? "" : " (as printed in the frame's file name, %g)") +
                          " (each time writes its own file)");
     }

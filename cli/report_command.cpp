@@ -131,8 +131,8 @@ std::string input_location(const std::string& input, const std::string& file) {
 // the same input file (wherever the summaries are: two "m.obj" in two folders are two
 // meshes), task, measure and element count, and the same handles (their count), field and
 // edge length where the task has them.
-std::string problem_key(const nlohmann::json& s, const std::string& input, const std::string& file) {
-  std::string key = input_location(input, file);
+std::string problem_key(const nlohmann::json& s, const std::string& location) {
+  std::string key = location;
   for (const char* part : {"task", "measure", "elements", "handles", "field", "edge_length"})
     key += std::string("\n") + (s.contains(part) ? s[part].dump() : std::string("-"));
   return key;
@@ -141,6 +141,7 @@ std::string problem_key(const nlohmann::json& s, const std::string& input, const
 struct LoadedRun {
   std::string file;     // the summary file
   std::string input;    // the summary's input (names the section)
+  std::string location; // the input as one path (input_location)
   std::string problem;  // what makes two runs rivals: one section each (problem_key)
   nlohmann::json summary;
   MethodRun run;
@@ -167,7 +168,8 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   };
   r.file = file;
   r.input = text("input");
-  r.problem = problem_key(s, r.input, file);
+  r.location = input_location(r.input, file);
+  r.problem = problem_key(s, r.location);
   const std::string mapped_path = resolve(text("map").empty() ? text("output") : text("map"), file);
   if (mapped_path.empty() && text("task") == "interp")
     throw InputError(file + ": an interp summary (several frames) is not one result; its frames are in interp's own "
@@ -255,15 +257,14 @@ std::string section_id(const std::string& input, std::set<std::string>& used) {
 // The section's title: its input, and where several sections share the input (another
 // measure, task, field...), what sets this one apart.
 std::string section_title(const LoadedRun& run, const std::vector<LoadedRun>& all) {
-  const std::string where = input_location(run.input, run.file);
   bool shared = false, elsewhere = false;
   for (const auto& r : all) {
     if (r.input != run.input || r.problem == run.problem) continue;
     shared = true;
-    elsewhere = elsewhere || input_location(r.input, r.file) != where;
+    elsewhere = elsewhere || r.location != run.location;
   }
   if (!shared) return input_title(run.input);
-  if (elsewhere) return where;  // two files of one name: the path tells them apart
+  if (elsewhere) return run.location;  // two files of one name: the path tells them apart
   const std::string title = input_title(run.input);
   const auto& s = run.summary;
   auto part = [&](const char* key) {

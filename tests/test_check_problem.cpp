@@ -156,12 +156,12 @@ TEST(CheckProblem, StartsAndOptionsOfTheOtherEntries) {
 TEST(CheckMesh, MakeProblemAndTasksRefuseAMeshWithBadIndicesOrShape) {
   const Mesh good = make_grid(3, 3);
   const std::vector<std::pair<std::string, std::function<void(Mesh&)>>> cases = {
-      {"has vertex 999", [](Mesh& m) { m.F(3, 1) = 999; }},
-      {"has vertex -2", [](Mesh& m) { m.F(0, 0) = -2; }},
+      {"has vertex index 999 out of range", [](Mesh& m) { m.F(3, 1) = 999; }},
+      {"has vertex index -2 out of range", [](Mesh& m) { m.F(0, 0) = -2; }},
       {"corners", [](Mesh& m) { m.F.conservativeResize(Eigen::NoChange, 2); }},
       {"corners", [](Mesh& m) { m.F.conservativeResize(Eigen::NoChange, 5); }},
       {"coordinates", [](Mesh& m) { m.V.conservativeResize(Eigen::NoChange, 1); }},
-      {"not finite", [](Mesh& m) { m.V(4, 1) = NAN; }},
+      {"non-finite", [](Mesh& m) { m.V(4, 1) = NAN; }},
   };
   for (const auto& [needle, spoil] : cases) {
     Mesh m = good;

@@ -235,8 +235,6 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   if (times.empty()) throw InputError("t needs at least one time in [0, 1]");
   for (double t : times)
     if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + std::to_string(t) + " is outside [0, 1]");
-  std::vector<double> at = times;
-  for (double& t : at) t += 0.0;  // -0 is 0
   const Mesh source = make_mesh(V, F, "source", true, nullptr);
   if (V_target.rows() != V.rows() || V_target.cols() != V.cols())
     throw InputError("target has " + std::to_string(V_target.rows()) + " by " + std::to_string(V_target.cols()) +
@@ -256,7 +254,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   run_released([&] {
     const auto threads = limit_threads(o.threads);
     interp.emplace(source, target, "source", "target");
-    for (double t : at) {
+    for (double t : times) {
       const auto tf = Clock::now();
       frames.push_back(interp->at(t, options));
       seconds.push_back(seconds_since(tf));

@@ -65,8 +65,6 @@ void write_mesh(const std::string& path, const Mesh& mesh, const MeshWriteOption
   // Indices a reader would refuse (a map's coordinates are written as they are: a solve that
   // failed numerically still shows its map).
   check_mesh_structure(mesh, "cannot write " + path, /*require_finite=*/false);
-  if (mesh.has_uv() && (mesh.FUV.minCoeff() < 0 || mesh.FUV.maxCoeff() >= mesh.UV.rows()))
-    throw InputError("cannot write " + path + ": a texture-coordinate index is out of range");
   if (options.element_quality && options.element_quality->size() != mesh.F.rows())
     throw InputError("cannot write " + path + ": element_quality has " +
                      std::to_string(options.element_quality->size()) + " values, the mesh has " +

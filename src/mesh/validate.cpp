@@ -28,9 +28,8 @@ class Validator {
       : mesh_(mesh), source_(source), tets_(mesh.F.cols() == 4), noun_(tets_ ? "tet" : "face") {}
 
   void run(std::vector<std::string>* warnings, bool check_geometry) {
-    check_shape();
-    check_finite();
-    check_indices();
+    check_not_empty();
+    check_structure(true);
     if (check_geometry) check_measures();
     check_duplicates();
     if (tets_)
@@ -39,6 +38,14 @@ class Validator {
       check_triangle_edges();
     if (check_geometry) check_signs();
     if (warnings) warn_unreferenced(*warnings);
+  }
+
+  // Corner and coordinate counts, finite coordinates (when asked), indices in range: what
+  // every function taking a Mesh relies on (check_mesh_structure).
+  void check_structure(bool require_finite) const {
+    check_counts();
+    if (require_finite) check_finite();
+    check_indices();
   }
 
  private:
@@ -52,17 +59,21 @@ class Validator {
     return s;
   }
 
-  void check_shape() const {
+  void check_not_empty() const {
+    if (mesh_.V.rows() == 0 && mesh_.F.rows() == 0) fail("empty file (no vertices and no faces)");
+    if (mesh_.F.rows() == 0)
+      fail("no faces (" + std::to_string(mesh_.V.rows()) + " vertices but no triangles or tetrahedra)");
+  }
+
+  // (An empty mesh, which check_mesh_structure lets through, has no counts to check.)
+  void check_counts() const {
     const auto& V = mesh_.V;
     const auto& F = mesh_.F;
-    if (V.rows() == 0 && F.rows() == 0) fail("empty file (no vertices and no faces)");
-    if (F.rows() == 0)
-      fail("no faces (" + std::to_string(V.rows()) + " vertices but no triangles or tetrahedra)");
-    if (F.cols() != 3 && F.cols() != 4)
+    if (F.rows() > 0 && F.cols() != 3 && F.cols() != 4)
       fail("elements have " + std::to_string(F.cols()) + " corners (need 3: triangles, or 4: tetrahedra)");
-    if (V.cols() != 2 && V.cols() != 3)
+    if (V.rows() > 0 && V.cols() != 2 && V.cols() != 3)
       fail("vertices have " + std::to_string(V.cols()) + " coordinates (need 2 or 3)");
-    if (tets_ && V.cols() != 3) fail("tetrahedra need 3D vertex coordinates, the vertices are 2D");
+    if (F.rows() > 0 && tets_ && V.cols() != 3) fail("tetrahedra need 3D vertex coordinates, the vertices are 2D");
   }
 
   void check_finite() const {
@@ -305,25 +316,7 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 }
 
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
-  const std::string name = source.empty() ? std::string("mesh") : source;
-  if (mesh.F.rows() > 0 && mesh.F.cols() != 3 && mesh.F.cols() != 4)
-    throw InputError(name + ": elements have " + std::to_string(mesh.F.cols()) +
-                     " corners (need 3: triangles, or 4: tetrahedra)");
-  if (mesh.V.rows() > 0 && mesh.V.cols() != 2 && mesh.V.cols() != 3)
-    throw InputError(name + ": vertices have " + std::to_string(mesh.V.cols()) + " coordinates (need 2 or 3)");
-  if (mesh.F.rows() > 0 && mesh.F.cols() == 4 && mesh.V.cols() != 3)
-    throw InputError(name + ": tetrahedra need 3D vertex coordinates");
-  for (Eigen::Index v = 0; require_finite && v < mesh.V.rows(); ++v)
-    if (!mesh.V.row(v).allFinite())
-      throw InputError(name + ": vertex " + std::to_string(v) + " (0-based) has a coordinate that is not finite");
-  const char* noun = mesh.F.cols() == 4 ? "tet " : "face ";
-  for (Eigen::Index e = 0; e < mesh.F.rows(); ++e)
-    for (Eigen::Index k = 0; k < mesh.F.cols(); ++k) {
-      const int v = mesh.F(e, k);
-      if (v < 0 || v >= mesh.V.rows())
-        throw InputError(name + ": " + noun + std::to_string(e) + " (0-based) has vertex " + std::to_string(v) +
-                         ", outside 0.." + std::to_string(mesh.V.rows() - 1));
-    }
+  Validator(mesh, source.empty() ? std::string("mesh") : source).check_structure(require_finite);
 }
 
 std::vector<int> unreferenced_vertices(const Mesh& mesh) {

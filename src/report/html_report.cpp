@@ -186,13 +186,12 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
   std::vector<std::string> verdicts;
   std::vector<const MethodEntry*> ranked;  // the comparable ones
   bool all_equivalent = true;
-  auto name = [](const MethodEntry& m) { return shown_name(m); };
   for (std::size_t i = 1; i < s.methods.size(); ++i) {
     const MethodEntry &a = s.methods[i - 1], &b = s.methods[i];
     if (!comparable(a, b)) continue;
     const StrictComparison c = compare_strict(a.distortion, b.distortion, a.weights);
     all_equivalent = all_equivalent && c.order == StrictOrder::Equivalent;
-    verdicts.push_back(verdict_text(c, name(a), name(b), a.weights.sum()));
+    verdicts.push_back(verdict_text(c, shown_name(a), shown_name(b), a.weights.sum()));
   }
   if (!verdicts.empty()) {
     h << "<h3>Strict order (paper, Section 4)</h3>\n<p class=\"caption\">Two maps compared from the top down: the "
@@ -217,7 +216,7 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
           best = i;
       }
       if (all_comparable && s.methods.size() > 2)
-        h << "<li><b>Least distorting of the maps shown: " << escape(name(s.methods[best])) << ".</b></li>\n";
+        h << "<li><b>Least distorting of the maps shown: " << escape(shown_name(s.methods[best])) << ".</b></li>\n";
     }
     h << "</ul>\n";
   }

@@ -8,7 +8,6 @@
 //   6. the status, decided from what the solve knows (result.h);
 //   7. optionally (Section 5.1 (a)) the least L2 map among the optima.
 // docs/maths.md section 3 has the program and its certificate.
-#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/linf.h"
 
 #include <algorithm>
@@ -25,6 +24,7 @@
 #include "linf_warm_start.h"
 #include "solvers/linf_relaxed_equalities.h"
 #include "option_check.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"

@@ -1,6 +1,5 @@
 // Relaxation-based strict minimization (paper Algorithm 3): the sweeper and the driver.
 // The sweep itself is in relax_sweep.cpp.
-#include "strictmin/problem/check_problem.h"
 #include "strictmin/solvers/relax.h"
 
 #include <chrono>
@@ -8,6 +7,7 @@
 
 #include "relax_copies.h"
 #include "relax_sweep.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/interrupt.h"
@@ -36,6 +36,7 @@ void check_no_flips_with_copies(const Problem& p, bool no_flips) {
 
 RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_flips)
     : accept_tolerance_(accept_tolerance) {
+  check_problem(p, "relax");
   check_no_flips_with_copies(p, no_flips);
   check_no_flips(p, no_flips);
   auto impl = std::make_shared<Impl>();
@@ -108,10 +109,6 @@ Result relax(const Problem& problem, const Eigen::MatrixXd& initial, const Relax
   check_map(problem, initial, "relax start");
   const auto t0 = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  if (initial.rows() != problem.num_vertices || initial.cols() != problem.image_dim)
-    throw InputError("relax: the initial map has " + std::to_string(initial.rows()) + " by " +
-                     std::to_string(initial.cols()) + " entries, expected " + std::to_string(problem.num_vertices) +
-                     " by " + std::to_string(problem.image_dim));
   Result result;
   Eigen::MatrixXd X = initial;
   for (int v = 0; v < problem.num_vertices; ++v)

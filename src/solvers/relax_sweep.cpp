@@ -246,16 +246,11 @@ void check_no_flips(const Problem& p, bool no_flips, const std::string& who) {
 // Packs the problem's elements and gradients, colours the free vertices and lists their
 // rings in sweep order.
 void build(const Problem& p, SweepData& s) {
+  // The problem's contract (sizes, dimensions, indices) is checked by the callers
+  // (check_problem in relax() and RelaxSweeper's constructor).
   const int n = p.image_dim, m = p.domain_dim;
-  if (!((n == 2 && m == 2) || (n == 3 && m == 3) || (n == 3 && m == 2)))
-    throw InputError("relax: needs image and domain dimension 2 and 2 (planar), 3 and 3 (tets) or 3 and 2 (a "
-                     "triangle surface in 3D), got " + std::to_string(n) + " and " + std::to_string(m));
   if (p.has_equalities()) throw InputError("relax: linear equality constraints (seams) are not supported");
   const int E = p.num_elements(), c = m + 1;
-  if (p.elements.cols() != c || p.gradients.rows() != static_cast<Eigen::Index>(E) * c ||
-      p.gradients.cols() != m || p.targets.rows() != static_cast<Eigen::Index>(E) * n || p.targets.cols() != m ||
-      p.weights.size() != E || static_cast<int>(p.fixed.size()) != p.num_vertices)
-    throw InputError("relax: the problem's arrays do not match its element count and dimensions");
 
   s.dim = n;
   s.domain_dim = m;

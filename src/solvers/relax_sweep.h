@@ -48,7 +48,7 @@ struct Deviations {
   int age = -1;  // sweeps since computed from the positions; -1: not computed
 };
 
-// Checks the problem (InputError) and fills s: packed elements and gradients, the colouring
+// Fills s (the Problem already checked: check_problem): packed elements and gradients, the colouring
 // of the free vertices, their rings in sweep order.
 void build(const Problem& p, SweepData& s);
 

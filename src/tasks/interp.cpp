@@ -165,7 +165,7 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
   for (int a : anchor) p.fixed[a] = 1;
 
   InterpFrame out;
-  out.t = t;
+  out.t = t + 0.0;  // -0 is 0
   const Result start = solve_l2(p);  // FD with the interpolated targets
   if (!start.ok() || lg.max_iterations <= 0) {
     out.result = lg.max_iterations <= 0 && start.ok() ? run_method(p, options.solver) : start;

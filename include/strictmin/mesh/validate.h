@@ -33,8 +33,8 @@ constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
 
 // The part of validate_mesh that every function taking a Mesh relies on, for meshes built in
 // code: 3 or 4 corners per element, 2 or 3 coordinates per vertex (3 for tets), finite
-// coordinates (unless `require_finite` is false: a map written whatever it holds), every index
-// in range. Throws InputError naming `source`, the element or vertex and the reason (an index
+// coordinates and UVs (unless `require_finite` is false: a map written whatever it holds),
+// every index (and UV index) in range, no vertex twice in an element. An empty mesh passes. Throws InputError naming `source`, the element or vertex and the reason (an index
 // out of range read and wrote out of bounds before).
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite = true);
 
