@@ -214,3 +214,34 @@ TEST(CheckArguments, WriteMeshRefusesWhatReadMeshWouldAndWritesNothing) {
   }
   std::filesystem::remove_all(dir);
 }
+
+// Equalities on free vertices that cannot all hold (x_v = 0.3 and x_v = 0.5) are a problem
+// without an answer, not a malformed one: every method reports it infeasible, with L2's
+// exact reason, instead of a Newton system that fails (linf and the methods built on it).
+TEST(CheckProblem, ContradictoryEqualitiesAreInfeasibleForEveryMethod) {
+  Problem p = grid_problem();
+  int v = 0;
+  while (p.fixed[v]) ++v;
+  p.eq_matrix.resize(2, 2 * p.num_vertices);
+  p.eq_matrix.insert(0, 2 * v) = 1.0;
+  p.eq_matrix.insert(1, 2 * v) = 1.0;
+  p.eq_rhs = Eigen::Vector2d(0.3, 0.5);
+  for (Method m : kMethods) {
+    SolverOptions o;
+    o.method = m;
+    o.relax.sweeps = 1;
+    const Result r = run_method(p, o);
+    EXPECT_EQ(r.status, SolveStatus::Infeasible) << method_name(m) << ": " << r.message;
+    EXPECT_NE(r.message.find("the linear equalities contradict each other (residual 0.2)"), std::string::npos)
+        << method_name(m) << ": " << r.message;
+  }
+  p.eq_rhs(1) = 0.3;  // the same row twice: consistent, and met
+  for (Method m : kMethods) {
+    if (m == Method::Relax) continue;  // relax moves seam copies only (docs/gparam.md)
+    SolverOptions o;
+    o.method = m;
+    const Result r = run_method(p, o);
+    EXPECT_EQ(r.status, SolveStatus::Solved) << method_name(m) << ": " << r.message;
+    EXPECT_NEAR(r.positions(v, 0), 0.3, 1e-7) << method_name(m);
+  }
+}

@@ -412,6 +412,11 @@ TEST(Linf, MinimizeL2AmongOptimalKeepsKAndLowersTheEnergy) {
   auto energy = [&](const Result& r) { return (p.weights.array() * r.distortion.array().square()).sum(); };
   EXPECT_LE(energy(r2), energy(r1) + 1e-12);
   EXPECT_EQ(r2.lower_bound, r2.lower_bound);  // kept from the L-infinity solve
+  // The message describes the map returned, not only the L-infinity solve before it.
+  char maximum[32];
+  std::snprintf(maximum, sizeof maximum, "(its maximum %g)", r2.distortion.maxCoeff());
+  EXPECT_NE(r2.message.find("then the least L2 map among those within 1e-06"), std::string::npos) << r2.message;
+  EXPECT_NE(r2.message.find(maximum), std::string::npos) << r2.message;
   std::printf("L2 among optimal: energy %.8f -> %.8f, k %.10f -> %.10f, %d -> %d iterations\n", energy(r1), energy(r2),
               k1, r2.distortion.maxCoeff(), r1.iterations, r2.iterations);
 }

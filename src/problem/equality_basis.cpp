@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -129,6 +130,14 @@ EqualityBasis equality_basis(const Problem& p) {
     elim.add_row(row, p.eq_rhs[r]);
   }
   return elim.finish();
+}
+
+std::string equalities_contradiction(const Problem& p, const EqualityBasis& basis) {
+  const double scale = 1.0 + (p.eq_rhs.size() ? p.eq_rhs.lpNorm<Eigen::Infinity>() : 0.0);
+  if (!(basis.redundant_residual > 1e-9 * scale)) return "";
+  char residual[32];
+  std::snprintf(residual, sizeof residual, "%g", basis.redundant_residual);
+  return std::string("the linear equalities contradict each other (residual ") + residual + ")";
 }
 
 }  // namespace strictmin

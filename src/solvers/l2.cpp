@@ -33,9 +33,9 @@ L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(che
   }
   if (p.has_equalities()) {
     auto basis = std::make_shared<EqualityBasis>(equality_basis(p));
-    if (basis->redundant_residual > 1e-9 * (1.0 + p.eq_rhs.lpNorm<Eigen::Infinity>())) {
+    message_ = equalities_contradiction(p, *basis);
+    if (!message_.empty()) {
       status_ = SolveStatus::Infeasible;
-      message_ = "the linear equalities contradict each other (residual " + std::to_string(basis->redundant_residual) + ")";
       return;
     }
     basis_ = std::move(basis);

@@ -25,6 +25,7 @@
 #include "solvers/linf_relaxed_equalities.h"
 #include "option_check.h"
 #include "strictmin/problem/check_problem.h"
+#include "strictmin/problem/equality_basis.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/problem/parts.h"
@@ -119,6 +120,9 @@ void polish_least_l2(const MainProgram& mp, const Eigen::VectorXd& x_star, doubl
   result.iterations += out.iterations;
   if (out.status == socp::IpmStatus::MonitorStopped) {
     X = p.with_free_dofs(st.x);
+    // The message so far describes the L-infinity map; say what the returned map is.
+    result.message += "; then the least L2 map among those within " + format(slack) + " of k* = " + format(kstar) +
+                      " (its maximum " + format(mp.evaluate(st.x).kmax) + ")";
   } else {
     // The L-infinity map stays: a usable result whose second criterion was not met.
     result.status = out.status == socp::IpmStatus::MaxIterations ? SolveStatus::MaxIterations : SolveStatus::Stalled;
@@ -219,8 +223,17 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
     return finish(p.positions);
   }
 
-  // 3. The start.
+  // 3. The start. One that misses the equalities after its projection onto them may mean
+  // that they cannot hold at all: decided exactly, as L2 does, rather than by a solve that
+  // could only fail.
   Candidate start = choose_start(mp, ls);
+  if (!mp.equalities_met(start.x)) {
+    result.message = equalities_contradiction(p, equality_basis(p));
+    if (!result.message.empty()) {
+      result.status = SolveStatus::Infeasible;
+      return finish(p.with_free_dofs(start.x));
+    }
+  }
 
   // 4. Phase 1, or the widening of barely missed bounds: a start that misses them by
   // round-off only (the strict minimizers pass maps that met them when evaluated on the whole

@@ -9,6 +9,7 @@
 // transitions have coefficients 0 and +-1, so the elimination is exact.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 
 #include "strictmin/problem/problem.h"
 
@@ -22,5 +23,11 @@ struct EqualityBasis {
 };
 
 EqualityBasis equality_basis(const Problem& p);
+
+// Why p's equalities cannot all hold ("the linear equalities contradict each other (residual
+// r)"), or "" when they can: a row that reduced to nothing left a right-hand side beyond
+// round-off (1e-9 relative to the largest |rhs|). Every solver reports such a problem
+// `infeasible` with this message.
+std::string equalities_contradiction(const Problem& p, const EqualityBasis& basis);
 
 }  // namespace strictmin
