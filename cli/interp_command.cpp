@@ -206,7 +206,15 @@ void add_interp_command(CLI::App& app, int& exit_code) {
   cmd->get_option("--report-scale")
       ->description("Report: the distortion shown red (dark blue is 0); 0: automatic, 1.5 times the largest frame "
                     "maximum rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten");
-  cmd->callback([args, &exit_code] { exit_code = run_interp(*args); });
+  // Interpolation's targets are the blended shapes' rotations: local-global does not
+  // extrapolate them (a value here would be ignored).
+  const CLI::Option* extrapolation = cmd->get_option("--lg-extrapolation");
+  cmd->callback([args, &exit_code, extrapolation] {
+    if (extrapolation->count() > 0)
+      throw InputError("--lg-extrapolation does not apply to interp: its targets are the blended shapes' rotations, "
+                       "which local-global does not extrapolate");
+    exit_code = run_interp(*args);
+  });
 }
 
 }  // namespace strictmin::cli

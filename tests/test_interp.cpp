@@ -170,6 +170,13 @@ TEST(Interp, DirectLevelsKeepEachElementsShape) {
   const InterpFrame linf = interp.at(0.5, options_for(Method::Linf));
   EXPECT_LE(direct.stats.max, linf.stats.max * (1 + 1e-4));
   EXPECT_EQ(direct.stats.flipped, 0);
+  // Levels whose local-global loops reach their cap: the run is not solved, whatever the
+  // last field-deviation step's gap says (its rotations are held: no bound on the level).
+  InterpOptions capped = o;
+  capped.local_global.max_iterations = 2;
+  const InterpFrame short_loops = interp.at(0.5, capped);
+  EXPECT_EQ(short_loops.result.status, SolveStatus::MaxIterations) << short_loops.result.message;
+  EXPECT_NE(short_loops.result.message.find("has no certified gap"), std::string::npos) << short_loops.result.message;
   // Shapes that do not fit the problem are refused, not read out of range.
   LocalGlobalOptions bad;
   bad.shapes = Eigen::MatrixXd::Identity(3, 3);

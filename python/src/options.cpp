@@ -75,7 +75,8 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "lg_iterations") o.local_global.max_iterations = integer(key, v);
   else if (key == "lg_tolerance") o.local_global.relative_change = real(key, v);
   else if (key == "lg_acceleration") o.local_global.acceleration_window = integer(key, v);
-  else if (key == "lg_extrapolation") o.local_global.target_extrapolation = real(key, v);
+  else if (key == "lg_extrapolation" && task != Task::Interp)  // interp's targets are its blended shapes
+    o.local_global.target_extrapolation = real(key, v);
   else if (key == "lg_warm_start") o.local_global.warm_start = flag(key, v);
   else if (key == "lg_cold_start") o.local_global.warm_start = !flag(key, v);  // the flag's own name
   else if (key == "start" && task == Task::Deform) o.start = text(key, v);

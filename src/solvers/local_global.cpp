@@ -79,7 +79,8 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   Eigen::MatrixXd targets;  // the local step of the candidate map
   // Extrapolated targets where the maximum is the objective the guarantee is about (linf and
   // direct's levels); l2's fixed point is reached faster by Anderson on its energy.
-  const double beta = solver.method == Method::Linf ? o.target_extrapolation : 0.0;
+  // Interpolation's targets (rotations of blended shapes, o.shapes) are not extrapolated.
+  const double beta = solver.method == Method::Linf && o.shapes.size() == 0 ? o.target_extrapolation : 0.0;
   Eigen::MatrixXd plain_targets = p.targets;  // the local step of the current map
   bool extrapolated = false;                  // p.targets are extrapolated from plain_targets
   int extrapolations_rejected = 0;
@@ -358,6 +359,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
     if (o.shapes.size() != 0) direct.moving_rings = 0;
     p.positions = out.positions;  // the first level starts here
     direct.level_iteration_unit = "local-global steps";
+    direct.level_bound_certifies = false;  // a loop stopped short counts with its status (strict.h)
     direct.level_solver = [o](const Problem& level_problem, const LinfOptions& linf, const Eigen::MatrixXd& X) {
       SolverOptions inner;
       inner.method = Method::Linf;

@@ -48,7 +48,7 @@ struct ShortLevels {
   SolveStatus reduced_status = SolveStatus::Solved;  // the worse of the reduced levels' statuses
   std::string first;  // the first one's message
 
-  // A level that stopped short of its own tolerance.
+  // A level that stopped short of its own tolerance (certified_gap NaN: it has no certificate).
   void add(int step, const Result& r, double k, double certified_gap) {
     if (r.status == SolveStatus::MaxIterations)
       ++iteration_limit;
@@ -82,12 +82,15 @@ struct ShortLevels {
     const int count = stalled + iteration_limit;
     if (count == 0) return loose_note;
     char worst[160];
-    std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap, worst_step,
-                  worst_k);
+    if (std::isinf(worst_gap))
+      std::snprintf(worst, sizeof worst, "level %d (k = %.6g) has no certified gap", worst_step, worst_k);
+    else
+      std::snprintf(worst, sizeof worst, "the largest certified gap %.3g at level %d (k = %.6g)", worst_gap,
+                    worst_step, worst_k);
     return std::to_string(count) + " of " + std::to_string(levels) + " levels stopped short of their tolerance (" +
            std::to_string(stalled) + " stalled or almost-solved, " + std::to_string(iteration_limit) +
            " max-iterations) and were used; " + std::to_string(reduced - loose) +
-           " of them with reduced accuracy (certified gap above delta_k / 4); " + worst + "; first: " + first +
+           " of them with reduced accuracy (no certified gap within delta_k / 4); " + worst + "; first: " + first +
            (loose_note.empty() ? "" : "; " + loose_note);
   }
 
@@ -206,7 +209,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
         stop_message = "direct stopped at level " + std::to_string(step) + ": " + r.message;
         break;
       }
-      short_levels.add(step, r, reached, gap);
+      short_levels.add(step, r, reached, options.level_bound_certifies ? gap : NAN);
     } else {
       short_levels.add_loose(step, reached, gap);
     }

@@ -292,6 +292,10 @@ def test_local_global_step_options():
     cold = strictmin.deform(V, F, idx, pos, method="linf", measure="arap", lg_tolerance=1e-8, lg_iterations=300,
                             lg_extrapolation=0.0, lg_cold_start=True, lg_acceleration=0)
     assert cold.max_distortion == plain.max_distortion
+    # interp does not take lg_extrapolation (its targets are the blended shapes' rotations,
+    # which are not extrapolated; the value was ignored).
+    with pytest.raises(TypeError, match="lg_extrapolation"):
+        strictmin.interp(V, F, V + 0.1, 0.5, method="linf", lg_extrapolation=0.0)
 
 
 def test_cli_flags_as_keywords():

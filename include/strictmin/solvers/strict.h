@@ -65,6 +65,12 @@ struct DirectOptions {
   bool warm_levels = true;
   std::function<void(const StrictStep&)> progress;
   LevelSolver level_solver;  // ARAP/ASAP: local-global iterations per level (local_global.h)
+  // Whether the level solver's Result.lower_bound bounds the level's own measure (so that a
+  // level that stopped short within delta_k / 4 of it still places its band). false for
+  // local-global levels: their bound is the last field-deviation step's, with the rotations
+  // held, and says nothing of a loop that did not converge; such a level counts with its
+  // status whatever its gap.
+  bool level_bound_certifies = true;
   // What the level solver's Result.iterations counts (StrictStep::level_iteration_unit).
   std::string level_iteration_unit = "interior-point iterations";
 
