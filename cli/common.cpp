@@ -140,6 +140,11 @@ std::string shown_number(double value, int significant) {
   return text;
 }
 
+std::string flipped_phrase(int flipped, int elements) {
+  if (flipped < 0) return "flips not defined (surface)";
+  return std::to_string(flipped) + " flipped" + (elements >= 0 ? " of " + std::to_string(elements) : "");
+}
+
 std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

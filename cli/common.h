@@ -71,6 +71,9 @@ void check_uv_output_path(const std::string& path);
 // A number for messages and file names, printf's %g with `significant` digits: as a user
 // wrote it (-1e-10, 0.25), where std::to_string prints -0.000000 and 0.250000.
 std::string shown_number(double value, int significant = 6);
+// "3 flipped" ("3 flipped of 800" with the element count), or "flips not defined (surface)"
+// for a negative count (a surface mapped in 3D: its 3x2 Jacobians have no orientation).
+std::string flipped_phrase(int flipped, int elements = -1);
 
 // The file name's extension in lower case (".obj"; empty when none).
 std::string lowercase_extension(const std::string& path);

@@ -78,8 +78,8 @@ int run_deform(const DeformArgs& a) {
   write_outputs(a.out, s, d.measured.distortion);
   if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_task_report(a.report, s, input, mesh, handles, d)));
   progress(a.out, "deform: max distortion " + std::to_string(d.measured.stats.max) + ", L2 " +
-                      std::to_string(d.measured.stats.l2) + ", " + std::to_string(d.measured.stats.flipped) +
-                      " flipped, " + status_name(d.result.status));
+                      std::to_string(d.measured.stats.l2) + ", " + flipped_phrase(d.measured.stats.flipped) + ", " +
+                      status_name(d.result.status));
   return exit_code_for(d.result.status);
 }
 

@@ -39,8 +39,8 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
   in.title = "The map " + input_title(a.mapped.empty() ? a.rest : a.mapped) + " of " + input_title(a.rest);
   in.description = "Task eval, " + summary.value("map_kind", std::string("deformation")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
-                   " elements, " + std::to_string(d.stats.flipped) + " flipped.";
-  in.measure = measure_description(summary.value("measure", std::string("fd")));
+                   " elements, " + flipped_phrase(d.stats.flipped) + ".";
+  describe_measure(in, summary.value("measure", std::string("fd")));
   in.rest = &rest;
   MethodRun run;
   run.method = "given";
@@ -111,8 +111,7 @@ int run_eval(const EvalArgs& a) {
   if (!a.report.dir.empty())
     progress(a.out, "report: " + file_url(write_eval_report(a, s, rest, mapped, parametrization, d)));
   progress(a.out, "eval (" + measure_name(*measure) + "): max " + std::to_string(d.stats.max) + ", L2 " +
-                      std::to_string(d.stats.l2) + ", " + std::to_string(d.stats.flipped) + " flipped of " +
-                      std::to_string(d.stats.elements));
+                      std::to_string(d.stats.l2) + ", " + flipped_phrase(d.stats.flipped, d.stats.elements));
   return kExitSuccess;
 }
 

@@ -40,9 +40,11 @@ struct ReportCommandArgs {
   OutputOptions out;
 };
 
-// A path from a summary: as given when it exists, else relative to the summary's folder.
+// A relative path from a summary: beside the summary when it exists there, else as given
+// (relative to the current folder). In that order, a run made in its own folder keeps its
+// own files when another run's of the same name sit in the current folder (it read those).
 std::string resolve(const std::string& path, const std::string& summary_file) {
-  if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
+  if (path.empty() || fs::path(path).is_absolute()) return path;
   const fs::path beside = fs::path(summary_file).parent_path() / path;
   return fs::exists(beside) ? beside.string() : path;
 }
@@ -138,6 +140,40 @@ std::string problem_key(const nlohmann::json& s, const std::string& location) {
   return key;
 }
 
+// A summary is checked against its own files before anything of it is shown: a hand-edited or
+// mismatched summary would otherwise put a wrong count, maximum or bound on the page (a
+// "certified lower bound" above the map's own maximum, a negative qc distortion).
+void check_summary_figures(const nlohmann::json& s, const std::string& file, const std::string& distortion_path,
+                           const Eigen::VectorXd& values, const std::string& measure) {
+  auto number = [&](const char* key) { return s.contains(key) && s[key].is_number() ? s[key].get<double>() : NAN; };
+  double file_max = 0;
+  for (double v : values) file_max = std::max(file_max, v);
+  const double summary_max = number("max_distortion");
+  if (std::isfinite(summary_max) && std::isfinite(file_max) &&
+      std::abs(summary_max - file_max) > 1e-9 * std::max(1.0, std::abs(file_max)))
+    throw InputError(file + ": max_distortion " + shown_number(summary_max, 10) + " disagrees with " +
+                     distortion_path + ", whose largest value is " + shown_number(file_max, 10));
+  const double bound = number("lower_bound");
+  if (std::isfinite(bound) && bound > file_max + 1e-6 * std::max(1.0, std::abs(file_max)))
+    throw InputError(file + ": lower_bound " + shown_number(bound, 10) + " is above the map's own maximum " +
+                     shown_number(file_max, 10) + " (a lower bound on the least maximum cannot exceed a map's)");
+  if ((measure == "qc" || measure == "iso") && values.size() > 0 && values.minCoeff() < 1 - 1e-9)
+    throw InputError(distortion_path + ": a " + measure + " distortion is at least 1, and this file has " +
+                     shown_number(values.minCoeff(), 10) + " (a distortion file of another measure?)");
+}
+
+// The summary's counts against the map's.
+void check_summary_counts(const nlohmann::json& s, const std::string& file, const std::string& mapped_path,
+                          int elements) {
+  if (s.contains("elements") && s["elements"].is_number() && s["elements"].get<double>() != elements)
+    throw InputError(file + ": elements " + s["elements"].dump() + " disagrees with " + mapped_path + ", which has " +
+                     std::to_string(elements));
+  if (s.contains("flipped") && s["flipped"].is_number() &&
+      !(s["flipped"].get<double>() >= 0 && s["flipped"].get<double>() <= elements))
+    throw InputError(file + ": flipped " + s["flipped"].dump() + " is not a count of the map's " +
+                     std::to_string(elements) + " elements");
+}
+
 struct LoadedRun {
   std::string file;     // the summary file
   std::string input;    // the summary's input (names the section)
@@ -197,6 +233,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   }
   for (const auto& w : warnings) progress(out, "warning: " + w);
   const int elements = r.run.mapped.num_elements();
+  check_summary_counts(s, file, mapped_path, elements);
   if (r.rest && r.rest->num_elements() != elements) {
     progress(out, "warning: " + file + ": the input has " + std::to_string(r.rest->num_elements()) +
                       " elements and the output " + std::to_string(elements) + "; the input is not shown");
@@ -207,6 +244,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   const std::string distortion_path = resolve(text("distortion_file"), file);
   if (!distortion_path.empty()) {
     r.run.distortion = read_distortion_file(distortion_path, elements);
+    check_summary_figures(s, file, distortion_path, r.run.distortion, measure_text);
     if (const auto m = parse_measure(measure_text)) r.run.distortion = report_values(*m, r.run.distortion);
   } else if (r.rest) {
     const auto measure = parse_measure(measure_text);
@@ -237,7 +275,8 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   r.run.flipped = s.contains("flipped") && s["flipped"].is_number_integer() ? s["flipped"].get<int>()
                   : s.contains("flipped") && s["flipped"].is_null()     ? -1
                                                                         : 0;
-  r.run.lower_bound = number("lower_bound");
+  // Certified for the convex measure only (docs/report.md); under arap / asap it is null.
+  r.run.lower_bound = measure_text == "fd" ? number("lower_bound") : std::nan("");
   r.run.time_s = std::isfinite(number("solver_time_s")) ? number("solver_time_s") : number("time_s");
   r.run.status = text("status").empty() ? "solved" : text("status");
   r.run.message = text("message");
@@ -308,9 +347,15 @@ int run_report(ReportCommandArgs a) {
     const LoadedRun& first =
         *std::find_if(loaded.begin(), loaded.end(), [&](const LoadedRun& r) { return r.problem == problem; });
     const std::string input = first.input;
-    std::map<std::string, int> runs_of_method;  // a method run twice: each run named by its file
+    // A method run twice: each run named by its file's name, or by its path where two such
+    // files share a name (in two folders).
+    std::map<std::string, int> runs_of_method;
+    std::map<std::pair<std::string, std::string>, int> same_name;  // (method, file name) -> runs
     for (const auto& r : loaded)
-      if (r.problem == problem) ++runs_of_method[r.run.method];
+      if (r.problem == problem) {
+        ++runs_of_method[r.run.method];
+        ++same_name[{r.run.method, fs::path(r.file).filename().string()}];
+      }
     SectionInput in;
     in.id = section_id(input, used_ids);
     in.title = section_title(first, loaded);
@@ -330,8 +375,10 @@ int run_report(ReportCommandArgs a) {
       stems.insert(stem);
       r.run.view_name = stem;
       // Two runs of one method on one problem (other options): told apart by their files.
-      if (runs_of_method[r.run.method] > 1)
-        r.run.label = method_label(r.run.method) + " (" + fs::path(r.file).filename().string() + ")";
+      if (runs_of_method[r.run.method] > 1) {
+        const std::string name = fs::path(r.file).filename().string();
+        r.run.label = method_label(r.run.method) + " (" + (same_name[{r.run.method, name}] > 1 ? r.file : name) + ")";
+      }
       fs::create_directories(fs::path(a.dir) / in.id, ec);
       if (ec) throw InputError("cannot create " + (fs::path(a.dir) / in.id).string() + ": " + ec.message());
       write_file_atomically((fs::path(a.dir) / in.id / (stem + ".json")).string(),
@@ -340,7 +387,7 @@ int run_report(ReportCommandArgs a) {
       all_solved = all_solved && r.run.status == "solved";
       in.runs.push_back(r.run);
     }
-    in.measure = measure_description(measure);
+    describe_measure(in, measure);
     in.description = std::to_string(in.runs.size()) + " result" + (in.runs.size() == 1 ? "" : "s") + " for input " +
                      (input.empty() ? std::string("(unknown)") : input) + ".";
     report.sections.push_back(write_section(a.dir, in, options));

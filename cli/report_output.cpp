@@ -108,7 +108,7 @@ std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary
   in.description = std::string("Task ") + summary.value("task", std::string("deform")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
                    " elements.";
-  in.measure = measure_description(summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")));
   in.rest = &rest;
   in.handles = handles;
   const std::string measure = summary.value("measure", std::string("fd"));
@@ -146,6 +146,11 @@ std::string measure_description(const std::string& m) {
   if (m == "qc") return "quasiconformal distortion \u03c3\u2081/\u03c3\u2082 \u2212 1";
   if (m == "iso") return "isometric distortion max(\u03c3\u2081, 1/\u03c3\u2082) \u2212 1";
   return m;
+}
+
+void describe_measure(SectionInput& in, const std::string& measure) {
+  in.measure = measure_description(measure);
+  in.value_name = measure == "qc" || measure == "iso" ? "distortion \u2212 1" : "distortion";
 }
 
 std::string input_title(const std::string& input) {

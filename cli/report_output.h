@@ -50,6 +50,8 @@ std::string file_url(const std::string& path);
 
 // "field deviation ||J - I||" etc. for a measure's short name (the name itself when unknown).
 std::string measure_description(const std::string& measure);
+// The section's measure and what its cards' numbers are (qc and iso: their excess over 1).
+void describe_measure(SectionInput& in, const std::string& measure);
 
 // A plain title for an input: "example:square" -> "square", "dir/gecko.obj" -> "gecko.obj".
 std::string input_title(const std::string& input);

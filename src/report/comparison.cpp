@@ -79,6 +79,7 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
   out.title = in.title;
   out.description = in.description;
   out.measure = in.measure;
+  out.value_name = in.value_name;
   out.alternatives = in.alternatives;
 
   const double scale = section_colour_scale(in.runs, o.scale);

@@ -99,7 +99,7 @@ double least_maximum(const ReportSection& s) {
   return k;
 }
 
-void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
+void write_card(std::ostream& h, const MethodEntry& m, double kstar, const std::string& value_name) {
   const std::string label = shown_name(m);
   h << "<div class=\"card\"><h3 style=\"border-left-color:" << escape(m.colour.empty() ? "#888888" : m.colour)
     << "\">" << escape(label) << "</h3>\n";
@@ -112,11 +112,14 @@ void write_card(std::ostream& h, const MethodEntry& m, double kstar) {
     h << "<div class=\"caption\">" << escape(caption) << "</div><img src=\"" << escape(path) << "\" alt=\""
       << escape(label + ": " + caption) << "\">\n";
   h << "<table class=\"numbers\">\n";
-  h << "<tr class=\"key\"><td>max distortion</td><td class=\"v\">" << number(m.stats.max, 5) << "</td></tr>\n";
+  h << "<tr class=\"key\"><td>max " << escape(value_name) << "</td><td class=\"v\">" << number(m.stats.max, 5)
+    << "</td></tr>\n";
   if (std::isfinite(m.lower_bound))
     h << "<tr><td>certified lower bound (no map does better)</td><td class=\"v\">" << number(m.lower_bound, 5)
       << "</td></tr>\n";
-  h << "<tr><td>L2 distortion (area-weighted RMS)</td><td class=\"v\">" << number(m.stats.l2, 4) << "</td></tr>\n";
+  const std::string l2_name = value_name == "distortion" ? "L2 distortion" : "L2 of " + value_name;
+  h << "<tr><td>" << escape(l2_name) << " (area-weighted RMS)</td><td class=\"v\">" << number(m.stats.l2, 4)
+    << "</td></tr>\n";
   if (std::isfinite(kstar) && kstar > kZeroDistortionShown && m.distortion.size() == m.weights.size() &&
       m.distortion.size() > 0)
     h << "<tr><td>area with distortion \u2265 " << number(0.9 * kstar, 3) << " (90% of the least max)</td><td class=\"v\">"
@@ -315,7 +318,7 @@ std::string index_html(const HtmlReport& r) {
       if (!s.input_caption.empty()) h << "<div class=\"caption\">" << escape(s.input_caption) << "</div>\n";
       h << "</div>\n";
     }
-    for (const auto& m : s.methods) write_card(h, m, kstar);
+    for (const auto& m : s.methods) write_card(h, m, kstar, s.value_name);
     h << "</div>\n<div class=\"below\">\n";
     if (!s.histogram.empty())
       h << "<figure><img src=\"" << escape(s.histogram) << "\" alt=\"distortion histogram\"><figcaption>Distortion "

@@ -22,7 +22,7 @@ void add_distortion_summary(nlohmann::json& s, const DistortionStats& stats) {
   s["max_element"] = stats.max_element;
   s["l2_distortion"] = number_or_null(stats.l2);
   s["mean_distortion"] = number_or_null(stats.mean);
-  s["flipped"] = stats.flipped;
+  s["flipped"] = stats.flipped < 0 ? nlohmann::json(nullptr) : nlohmann::json(stats.flipped);  // null: not defined
 }
 
 void add_status_summary(nlohmann::json& s, const Result& r) {
@@ -218,6 +218,7 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, InterpKind kind, const
   add_status_summary(j, f.result);
   add_solver_summary(j, options.solver, f.result);
   add_local_global_summary(j, f.result);
+  j["solver_time_s"] = f.result.time_s;  // the solve alone (the report's "time"); time_s adds the frame's writing
   // --lg-iterations 0: one global solve, no local-global iteration (iterations and history
   // are that solve's).
   if (options.local_global.max_iterations == 0) j["local_global_iterations"] = 0;

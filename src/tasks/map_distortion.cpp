@@ -49,7 +49,7 @@ MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Me
     out.flipped(e) = is_flipped(J) ? 1 : 0;
   }
   out.stats = distortion_stats(out.distortion, out.weights);
-  out.stats.flipped = out.flipped.sum();
+  out.stats.flipped = surface_to_3d ? -1 : out.flipped.sum();  // a 3x2 Jacobian has no determinant
   return out;
 }
 

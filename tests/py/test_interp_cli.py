@@ -156,6 +156,15 @@ class Interp(unittest.TestCase):
         with open(os.path.join(rep, "index.html")) as f:
             html = f.read()
         self.assertIn("not defined (surface)", html)
+        # The report's time is the summary's solver_time_s (the solve alone; it was in no key).
+        frame = s["frames"][0]
+        self.assertLessEqual(frame["solver_time_s"], frame["time_s"])
+        # eval of the same two surfaces says the same (it wrote "flipped": 0, "0 of 18" in its report).
+        p = run("eval", src, dst, "--measure", "arap", "--summary", "-", "--report", rep + "_eval", check_code=0)
+        self.assertIsNone(json.loads(p.stdout)["flipped"])
+        self.assertIn("flips not defined (surface)", p.stderr)
+        with open(os.path.join(rep + "_eval", "index.html")) as f:
+            self.assertIn("not defined (surface)", f.read())
         self.assertNotIn("flipped elements</td><td class=\"v\">0 of", html)
 
     def test_exact_frames_of_a_surface_are_solved(self):

@@ -109,6 +109,14 @@ class Report(unittest.TestCase):
         self.assertEqual(len(sections), 2, sections)
         self.assertTrue(sections[0].endswith(os.path.join("A", "m.obj")) and sections[1].endswith(os.path.join("B", "m.obj")),
                         sections)
+        # One method run twice with summaries of one name in two folders: named by their paths
+        # (both were "L∞ (least maximum) (linf.json)").
+        os.makedirs(os.path.join(self.dir, "again"))
+        deform("linf", "--method", "linf", "--gap", "1e-6", cwd=os.path.join(self.dir, "again"))
+        run("report", "dup", "linf.json", os.path.join("again", "linf.json"), cwd=self.dir)
+        html = read(os.path.join(self.dir, "dup", "index.html"))
+        self.assertIn("L∞ (least maximum) (linf.json)", html)
+        self.assertIn("L∞ (least maximum) (" + os.path.join("again", "linf.json") + ")", html)
 
     def test_zero_distortion_is_said_plainly(self):
         # An exact map (1e-14 from rounding) gave "inf x the least maximum 0" and a histogram of noise.
@@ -127,6 +135,36 @@ class Report(unittest.TestCase):
         self.assertNotIn("the least maximum 0", html)
         svg = read(os.path.join(self.dir, "z", "g-obj", "histogram.svg"))
         self.assertNotIn("e-14", svg)
+
+    def test_summary_is_checked_against_its_files(self):
+        # A summary whose figures disagree with its own map and distortion file is refused by
+        # name: it put "certified lower bound 0.7" beside a maximum of 0.3, an element count in
+        # a second section with the same title, and a negative "qc" distortion on the page.
+        run("deform", "--example", "square", "--method", "linf", "-o", "sq.obj", "--distortion", "sq.txt",
+            "--summary", "sq.json", "--quiet", cwd=self.dir, check_code=0)
+        summary = json.loads(read(os.path.join(self.dir, "sq.json")))
+        for key, value, needle in (("lower_bound", 0.7, "is above the map's own maximum"),
+                                   ("elements", 999, "elements 999 disagrees with sq.obj, which has 800"),
+                                   ("flipped", 5000, "flipped 5000 is not a count"),
+                                   ("max_distortion", 0.5, "max_distortion 0.5 disagrees with sq.txt"),
+                                   ("measure", "qc", "a qc distortion is at least 1")):
+            edited = dict(summary, **{key: value})
+            with open(os.path.join(self.dir, "e.json"), "w") as f:
+                json.dump(edited, f)
+            p = run("report", "out", "e.json", cwd=self.dir, check_code=1)
+            self.assertIn(needle, p.stderr, key)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "index.html")), key)
+        # The unedited summary is shown, its figures as written.
+        run("report", "out", "sq.json", cwd=self.dir, check_code=0)
+        html = read(os.path.join(self.dir, "out", "index.html"))
+        self.assertIn("certified lower bound", html)
+        # qc's cards show the excess over 1, and say so.
+        run("deform", "--example", "square", "--measure", "qc", "--method", "l2", "-o", "q.obj", "--distortion",
+            "q.txt", "--summary", "q.json", "--quiet", cwd=self.dir, check_code=0)
+        run("report", "outq", "q.json", cwd=self.dir, check_code=0)
+        html = read(os.path.join(self.dir, "outq", "index.html"))
+        self.assertIn("<td>max distortion \u2212 1</td>", html)
+        self.assertIn("<td>L2 of distortion \u2212 1 (area-weighted RMS)</td>", html)
 
     def test_report_needs_results_it_can_read(self):
         p = run("report", os.path.join(self.dir, "out"), check_code=1)

@@ -38,6 +38,7 @@ struct SectionInput {
   const Mesh* rest = nullptr;  // the input, drawn as "input" when given
   std::vector<Handle> handles; // drawn on the input picture (2D): fixed as dots, moved as arrows
   std::string measure = "field deviation \u2016J \u2212 I\u2016";
+  std::string value_name = "distortion";  // what the cards' numbers are ("distortion \u2212 1": qc, iso)
   std::vector<MethodRun> runs;
   bool alternatives = true;    // the runs are rival maps of one problem (notes and strict-order verdicts
                                // compare them); false for a sequence such as interpolation frames

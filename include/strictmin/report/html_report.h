@@ -40,6 +40,7 @@ struct ReportSection {
   std::string histogram;     // relative path of the overlaid histogram
   double scale = std::numeric_limits<double>::quiet_NaN();  // its colour scale; NaN: the report's
   std::string measure = "field deviation \u2016J \u2212 I\u2016";
+  std::string value_name = "distortion";  // what the cards' numbers are ("distortion \u2212 1": qc, iso)
   std::vector<MethodEntry> methods;
   bool alternatives = true;  // rival maps of one problem: compare them (notes, verdicts); false: a sequence
 };

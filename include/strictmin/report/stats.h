@@ -9,7 +9,7 @@ struct DistortionStats {
   double l2 = 0;          // area-weighted RMS: sqrt(sum A_T D_T^2 / sum A_T)
   double mean = 0;        // area-weighted mean
   int max_element = -1;   // index of the largest value
-  int flipped = 0;        // elements with det J <= 0
+  int flipped = 0;        // elements with det J <= 0; -1: not defined (a surface in 3D, 3x2 Jacobians)
   int elements = 0;
 };
 

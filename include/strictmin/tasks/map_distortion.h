@@ -13,8 +13,8 @@ namespace strictmin {
 struct MapDistortion {
   Eigen::VectorXd distortion;  // #E, in the measure asked for
   Eigen::VectorXd weights;     // #E rest areas / volumes
-  Eigen::VectorXi flipped;     // #E, 1 where det J <= 0
-  DistortionStats stats;
+  Eigen::VectorXi flipped;     // #E, 1 where det J <= 0 (0 for a 3x2 Jacobian: no orientation)
+  DistortionStats stats;       // stats.flipped -1 for a surface mapped in 3D (not defined)
 };
 
 // Map of `rest` that sends corner j of element e to corner_images.row(e * corners + j).
