@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <regex>
@@ -21,6 +22,7 @@
 #include "strictmin/report/histogram_svg.h"
 #include "strictmin/report/html_report.h"
 #include "strictmin/report/png.h"
+#include "strictmin/report/rasterizer.h"
 #include "strictmin/report/surface_view.h"
 #include "strictmin/report/svg_view.h"
 
@@ -314,4 +316,56 @@ TEST(HtmlReport, ReferencesOnlyFilesThatExist) {
   EXPECT_TRUE(fs::exists(tmp.path / "solid" / "linf.png"));
   check_balanced(slurp(tmp.path / "planar" / "histogram.svg"));
   EXPECT_EQ(check_balanced(slurp(tmp.path / "planar" / "linf.svg")).at("polygon"), grid.num_elements());
+}
+
+TEST(Image, RefusesNegativeAndOverflowingSizes) {
+  EXPECT_NO_THROW(Image(0, 0));
+  EXPECT_NO_THROW(Image(3, 0));
+  try {
+    Image(-1, 4);
+    FAIL() << "a negative width was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("-1 x 4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Image(4, -1), std::invalid_argument);
+  EXPECT_THROW(Image(std::numeric_limits<int>::max(), std::numeric_limits<int>::max()), std::invalid_argument);
+}
+
+TEST(Image, PixelsOutsideTheImageAreOutOfRange) {
+  Image image(4, 3, Rgb{1, 2, 3});
+  image.set(3, 2, Rgb{9, 8, 7});
+  EXPECT_TRUE(image.at(3, 2) == (Rgb{9, 8, 7}));
+  EXPECT_TRUE(image.at(0, 0) == (Rgb{1, 2, 3}));
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{4, 0}, {0, 3}, {-1, 0}, {0, -1}, {4, 2}}) {
+    EXPECT_THROW(image.set(x, y, Rgb{}), std::out_of_range) << x << ", " << y;
+    EXPECT_THROW(image.at(x, y), std::out_of_range) << x << ", " << y;
+  }
+  try {
+    image.at(5, 1);
+    FAIL() << "a pixel beyond the width was read";
+  } catch (const std::out_of_range& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("x = 5, y = 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("4 x 3"), std::string::npos) << what;
+  }
+  EXPECT_THROW(Image().at(0, 0), std::out_of_range);
+}
+
+TEST(Rasterizer, ClipsTrianglesBeyondThePictureAndSkipsNonFiniteOnes) {
+  // Framed on a small box: the grid reaches far beyond the picture on every side; one vertex
+  // is huge and one is not a number.
+  Mesh grid = make_grid(6, 6, 10.0, 10.0);
+  grid.V(8, 0) = 1e300;
+  grid.V(20, 1) = std::numeric_limits<double>::quiet_NaN();
+  RasterOptions o;
+  o.width = 40;
+  o.height = 30;
+  o.camera = top_camera();
+  o.fit_box = true;
+  o.box_min = Eigen::Vector3d(4, 4, 0);
+  o.box_max = Eigen::Vector3d(6, 6, 0);
+  const Image image = rasterize(grid.V, grid.F, [](int, double, double, double) { return Rgb{200, 0, 0}; }, o);
+  ASSERT_EQ(image.width, 40);
+  ASSERT_EQ(image.height, 30);
+  EXPECT_FALSE(image.at(20, 15) == (Rgb{255, 255, 255}));  // the middle is covered
 }
