@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "benchmark_main.h"
 #include "problems.h"
 #include "strictmin/solvers/strict.h"
 
@@ -16,14 +17,17 @@ using namespace strictmin;
 
 namespace {
 
+constexpr int kNoLevelCap = 100000;  // DirectOptions::max_steps's default
+
+// The environment's options; a bad value throws std::invalid_argument naming the variable.
 DirectOptions options_from_env(int max_steps) {
   DirectOptions options;
   options.max_steps = max_steps;
   // STRICTMIN_DIRECT_MAX_STEPS: another cap on the levels (0: none), e.g. the bar to the end.
-  if (const char* v = std::getenv("STRICTMIN_DIRECT_MAX_STEPS"))
-    options.max_steps = std::atoi(v) > 0 ? std::atoi(v) : 100000;
+  if (const int steps = bench::env_int("STRICTMIN_DIRECT_MAX_STEPS", -1, 0); steps >= 0)
+    options.max_steps = steps > 0 ? steps : kNoLevelCap;
   // STRICTMIN_MOVING_RINGS: DirectOptions::moving_rings (0: every vertex at every level).
-  if (const char* v = std::getenv("STRICTMIN_MOVING_RINGS")) options.moving_rings = std::atoi(v);
+  options.moving_rings = bench::env_int("STRICTMIN_MOVING_RINGS", options.moving_rings, 0);
   // STRICTMIN_DIRECT_COLD_LEVELS=1: DirectOptions::warm_levels off (--level-cold-start).
   options.warm_levels = std::getenv("STRICTMIN_DIRECT_COLD_LEVELS") == nullptr;
   return options;
@@ -38,7 +42,7 @@ bool write_distortion(const char* path, const Problem& p, const Result& r) {
   return std::fclose(f) == 0;
 }
 
-void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
+void run(benchmark::State& state, const Problem& p, int max_steps = kNoLevelCap) {
   const char* distortion_file = std::getenv("STRICTMIN_DIRECT_DISTORTION");
   if (distortion_file) {  // a missing folder is refused before minutes of solving
     const std::filesystem::path folder = std::filesystem::path(distortion_file).parent_path();
@@ -53,7 +57,7 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
   DirectOptions options = options_from_env(max_steps);
   // STRICTMIN_LINF_VERBOSE=1|2: every level's interior-point iterations (as in bench_linf).
   LinfOptions linf;
-  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) linf.verbose = std::atoi(v);
+  linf.verbose = bench::env_int("STRICTMIN_LINF_VERBOSE", 0, 0, 2);
   options.progress = [&](const StrictStep& s) {
     last = s;
     std::fprintf(stderr, "  step %d: k %.6f, fixed %d (+%d), %d ipm iterations, %d free vertices, %.1f s\n", s.step,
@@ -74,7 +78,7 @@ void run(benchmark::State& state, const Problem& p, int max_steps = 100000) {
     state.SkipWithError(("STRICTMIN_DIRECT_DISTORTION=" + std::string(distortion_file) + ": cannot be written").c_str());
   // A run capped on purpose (the bar, or STRICTMIN_DIRECT_MAX_STEPS) ends max-iterations at its
   // level cap: that is the request. The cap is the effective one, options.max_steps.
-  const bool capped = options.max_steps < 100000 && r.status == SolveStatus::MaxIterations &&
+  const bool capped = options.max_steps < kNoLevelCap && r.status == SolveStatus::MaxIterations &&
                       r.iterations == options.max_steps;
   if (!r.ok() && !capped) state.SkipWithError(("not solved: " + status_name(r.status) + ": " + r.message).c_str());
 }
@@ -93,4 +97,10 @@ void BM_DirectBar(benchmark::State& state) {
 BENCHMARK(BM_DirectSquare)->Arg(71)->Arg(158)->Arg(224)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_DirectBar)->Arg(35)->Arg(79)->Arg(112)->Unit(benchmark::kSecond)->Iterations(1);
 
-BENCHMARK_MAIN();
+// The environment is checked before the first benchmark (a bad value: exit 1).
+static void check_environment() {
+  options_from_env(kNoLevelCap);
+  bench::env_int("STRICTMIN_LINF_VERBOSE", 0, 0, 2);
+}
+
+int main(int argc, char** argv) { return bench::benchmark_main("bench_direct", check_environment, argc, argv); }

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmark_main.h"
 #include "problems.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/io/mesh_io.h"
@@ -72,4 +73,6 @@ BENCHMARK(BM_LinfSquare)->Arg(71)->Arg(158)->Arg(224)->Unit(benchmark::kMillisec
 BENCHMARK(BM_LinfBar)->Arg(35)->Arg(79)->Arg(112)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LinfBimba)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return bench::benchmark_main("bench_linf", [] { bench::linf_options_from_env(); }, argc, argv);
+}

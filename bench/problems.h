@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "args.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/linf.h"
@@ -45,12 +46,13 @@ inline Problem bar_problem(int n) {
   return p;
 }
 
-// L-infinity options of the benchmarks: STRICTMIN_LINF_VERBOSE=1|2 prints the solver's
+// L-infinity options of the benchmarks: STRICTMIN_LINF_VERBOSE=0|1|2 prints the solver's
 // per-iteration lines and phase timers; STRICTMIN_LINF_NO_PROBES=1 turns the active-set
-// probes off (LinfOptions::active_set_probes), for A/B comparisons.
+// probes off (LinfOptions::active_set_probes), for A/B comparisons. A bad verbosity throws
+// std::invalid_argument naming the variable (bench::env_int).
 inline LinfOptions linf_options_from_env() {
   LinfOptions o;
-  if (const char* v = std::getenv("STRICTMIN_LINF_VERBOSE")) o.verbose = std::atoi(v);
+  o.verbose = env_int("STRICTMIN_LINF_VERBOSE", 0, 0, 2);
   if (std::getenv("STRICTMIN_LINF_NO_PROBES")) o.active_set_probes = false;
   if (o.verbose)
     o.progress = [](const IterationRecord& r) {

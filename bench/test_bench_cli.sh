@@ -36,5 +36,16 @@ expect 1 "no folder" bench_gparam_relax m.obj --start "$tmp/nowhere/s.bin"
 expect 1 "cannot open" bench_table1 --merge "$tmp/missing.json"
 expect 1 "no JSON files" bench_table1 --merge
 expect 1 "no folder" bench_table1 --out "$tmp/nowhere/t.json" "$tmp/missing.obj"
+# Google Benchmark programs: the environment is checked before the first benchmark
+# (--benchmark_list_tests runs none).
+for p in bench_direct bench_linf; do
+  expect 0 benchmark_filter "$p" --help
+  STRICTMIN_LINF_VERBOSE=abc expect 1 "STRICTMIN_LINF_VERBOSE=abc" "$p" --benchmark_list_tests
+  STRICTMIN_LINF_VERBOSE=3 expect 1 "STRICTMIN_LINF_VERBOSE=3" "$p" --benchmark_list_tests
+  STRICTMIN_LINF_VERBOSE=1 expect 0 BM_ "$p" --benchmark_list_tests
+done
+STRICTMIN_DIRECT_MAX_STEPS=5x expect 1 STRICTMIN_DIRECT_MAX_STEPS bench_direct --benchmark_list_tests
+STRICTMIN_MOVING_RINGS=-1 expect 1 STRICTMIN_MOVING_RINGS bench_direct --benchmark_list_tests
+STRICTMIN_LINF_VERBOSE=x expect 1 STRICTMIN_LINF_VERBOSE bench_gparam_linf "$tmp/missing.obj"
 [ "$failed" -eq 0 ] && echo "bench_cli: all passed"
 [ "$failed" -eq 0 ]

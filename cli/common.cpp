@@ -12,6 +12,7 @@
 
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 
 // OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -216,5 +217,16 @@ void progress(const OutputOptions& out, const std::string& line) {
 }
 
 int exit_code_for(SolveStatus status) { return status == SolveStatus::Solved ? kExitSuccess : kExitNotConverged; }
+
+std::string write_map(const std::string& path, const Mesh& map, SolveStatus status, const MeshWriteOptions& options) {
+  if (path.empty()) return "";
+  if (!coordinates_are_finite(map)) {
+    std::cerr << "strictmin: warning: map not written to " << path << ": its coordinates are not finite (status "
+              << status_name(status) << ")" << std::endl;
+    return "";
+  }
+  write_mesh(path, map, options);
+  return path;
+}
 
 }  // namespace strictmin::cli

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/mesh/mesh.h"
 #include "strictmin/report/stats.h"
 #include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/solvers/result.h"
@@ -82,5 +84,12 @@ std::string lowercase_extension(const std::string& path);
 void progress(const OutputOptions& out, const std::string& line);
 
 int exit_code_for(SolveStatus status);
+
+// Writes a solve's map to PATH (-o) and returns PATH, the summary's `output`; "" when PATH is
+// empty or the map's coordinates or UVs are not finite (a solve that failed numerically,
+// status STATUS): such a map is not written, which a line on stderr says even under --quiet
+// (no reader takes "nan"), and the run goes on to its summary and exit code.
+std::string write_map(const std::string& path, const Mesh& map, SolveStatus status,
+                      const MeshWriteOptions& options = {});
 
 }  // namespace strictmin::cli

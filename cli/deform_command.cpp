@@ -68,12 +68,10 @@ int run_deform(const DeformArgs& a) {
 
   const DeformOutcome d = deform(mesh, handles, options);
   if (!d.result.ok()) progress(a.out, "warning: " + status_name(d.result.status) + ": " + d.result.message);
-  if (!a.output.empty()) {
-    MeshWriteOptions w;
-    w.element_quality = &d.measured.distortion;
-    write_mesh(a.output, d.deformed, w);
-  }
-  nlohmann::json s = deform_summary(mesh, handles.size(), options, d, {input, a.output, a.out.distortion});
+  MeshWriteOptions w;
+  w.element_quality = &d.measured.distortion;
+  const std::string written = write_map(a.output, d.deformed, d.result.status, w);
+  nlohmann::json s = deform_summary(mesh, handles.size(), options, d, {input, written, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, d.measured.distortion);
   if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_task_report(a.report, s, input, mesh, handles, d)));

@@ -100,8 +100,8 @@ int run_gparam(const GParamArgs& a) {
   if (!g.result.ok()) progress(a.out, "warning: " + status_name(g.result.status) + ": " + g.result.message);
   if (!a.field_out.empty()) write_field_file(a.field_out, field_directions(g.field, g.frames));
   if (!a.cones_out.empty()) write_cone_file(a.cones_out, g.quarters);
-  if (!a.output.empty()) write_mesh(a.output, g.mapped);
-  nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, a.output, a.out.distortion});
+  const std::string written = write_map(a.output, g.mapped, g.result.status);
+  nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, written, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, g.measured.distortion);
   if (!a.report.dir.empty())

@@ -137,11 +137,8 @@ int run_interp(const InterpArgs& a) {
     const auto tf = std::chrono::steady_clock::now();
     progress(a.out, "interp: t = " + std::to_string(t));
     const InterpFrame f = interp.at(t, options);
-    std::string path;
-    if (!a.output.empty()) {
-      path = frame_path(a.output, t, a.source);
-      write_mesh(path, f.mesh);
-    }
+    const std::string frame_file = a.output.empty() ? "" : frame_path(a.output, t, a.source);
+    const std::string path = write_map(frame_file, f.mesh, f.result.status);  // "" when not written
     if (!f.result.ok()) {
       worst = worse_status(worst, f.result.status);
       progress(a.out, "warning: t = " + std::to_string(t) + ": " + status_name(f.result.status) + ": " + f.result.message);

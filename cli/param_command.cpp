@@ -80,8 +80,8 @@ int run_param(ParamArgs a) {
 
   const ParamOutcome p = parametrize(mesh, options, a.mesh);
   if (!p.result.ok()) progress(a.out, "warning: " + status_name(p.result.status) + ": " + p.result.message);
-  if (!a.output.empty()) write_mesh(a.output, p.mapped);
-  nlohmann::json s = param_summary(mesh, options, p, {a.mesh, a.output, a.out.distortion});
+  const std::string written = write_map(a.output, p.mapped, p.result.status);
+  nlohmann::json s = param_summary(mesh, options, p, {a.mesh, written, a.out.distortion});
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, p.measured.distortion);
   if (!a.report.dir.empty()) progress(a.out, "report: " + file_url(write_param_report(a.report, s, a.mesh, mesh, p)));

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -622,6 +623,25 @@ TEST_F(TempDir, WriteRejectsUnknownExtensionAndBadQuality) {
   options.element_quality = &quality;
   expect_input_error([&] { write_mesh(path("x.ply"), make_grid(1, 1), options); },
                      {"cannot write", "element_quality has 3 values, the mesh has 2 elements"});
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(TempDir, WriteRefusesCoordinatesAndUvsThatAreNotFinite) {
+  // "nan" and "inf" are read back by no reader (ours included): refused before any file.
+  Mesh m = make_grid(2, 2);
+  m.V(4, 1) = std::numeric_limits<double>::quiet_NaN();
+  for (const char* name : {"n.obj", "n.off", "n.ply", "n.mesh"})
+    expect_input_error([&] { write_mesh(path(name), m); },
+                       {"cannot write " + path(name), "vertex 4 (0-based)", "non-finite coordinate (nan)"});
+  Mesh tets = make_tet_box(1, 1, 1, 1.0, 1.0, 1.0);
+  tets.V(2, 0) = -std::numeric_limits<double>::infinity();
+  expect_input_error([&] { write_mesh(path("t.mesh"), tets); }, {"vertex 2 (0-based)", "(-inf)"});
+  Mesh uv = make_grid(2, 2);
+  uv.UV = uv.V;
+  uv.FUV = uv.F;
+  uv.UV(5, 0) = std::numeric_limits<double>::infinity();
+  expect_input_error([&] { write_mesh(path("u.obj"), uv); },
+                     {"cannot write " + path("u.obj"), "texture coordinate 5 (0-based)", "non-finite value (inf)"});
   EXPECT_TRUE(listing().empty());
 }
 

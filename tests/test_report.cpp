@@ -1,9 +1,11 @@
 // Reports: the colour scale, histograms, SVG and PNG views, index.html.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <regex>
@@ -21,6 +23,8 @@
 #include "strictmin/report/histogram_svg.h"
 #include "strictmin/report/html_report.h"
 #include "strictmin/report/png.h"
+#include "strictmin/report/rasterizer.h"
+#include "strictmin/report/report_manifest.h"
 #include "strictmin/report/surface_view.h"
 #include "strictmin/report/svg_view.h"
 
@@ -314,4 +318,143 @@ TEST(HtmlReport, ReferencesOnlyFilesThatExist) {
   EXPECT_TRUE(fs::exists(tmp.path / "solid" / "linf.png"));
   check_balanced(slurp(tmp.path / "planar" / "histogram.svg"));
   EXPECT_EQ(check_balanced(slurp(tmp.path / "planar" / "linf.svg")).at("polygon"), grid.num_elements());
+}
+
+namespace {
+
+// A section "planar" of the 4 x 4 grid with one run per method.
+SectionInput grid_section(const Mesh& grid, const std::vector<std::string>& methods) {
+  SectionInput in;
+  in.id = "planar";
+  in.rest = &grid;
+  for (const std::string& method : methods) {
+    MethodRun r;
+    r.method = method;
+    r.mapped = grid;
+    r.distortion = ramp_distortion(grid.num_elements(), 0.5);
+    r.weights = make_problem(grid).weights;
+    in.runs.push_back(r);
+  }
+  return in;
+}
+
+void write_report(const fs::path& dir, const SectionInput& in) {
+  HtmlReport report;
+  report.sections.push_back(write_section(dir.string(), in));
+  write_index_html((dir / "index.html").string(), report);
+}
+
+void touch(const fs::path& file) { std::ofstream(file) << "mine\n"; }
+
+}  // namespace
+
+TEST(ReportManifest, ANewReportRemovesTheFilesOfTheOldOneItDoesNotWriteAgain) {
+  TempDir tmp;
+  const Mesh grid = make_grid(4, 4);
+  write_report(tmp.path, grid_section(grid, {"l2", "linf"}));
+  ASSERT_TRUE(fs::exists(tmp.path / "planar" / "linf.svg"));
+  ASSERT_TRUE(fs::exists(tmp.path / "planar" / "linf-histogram.svg"));
+  const std::vector<std::string> listed = read_report_manifest(tmp.path.string());
+  EXPECT_NE(std::find(listed.begin(), listed.end(), "planar/linf.svg"), listed.end());
+  EXPECT_NE(std::find(listed.begin(), listed.end(), "index.html"), listed.end());
+  touch(tmp.path / "notes.txt");            // the user's files, in the folder and in a section
+  touch(tmp.path / "planar" / "mine.txt");
+
+  write_report(tmp.path, grid_section(grid, {"l2"}));
+  EXPECT_TRUE(fs::exists(tmp.path / "planar" / "l2.svg"));
+  EXPECT_TRUE(fs::exists(tmp.path / "planar" / "histogram.svg"));
+  EXPECT_FALSE(fs::exists(tmp.path / "planar" / "linf.svg"));
+  EXPECT_FALSE(fs::exists(tmp.path / "planar" / "linf-histogram.svg"));
+  EXPECT_FALSE(fs::exists(tmp.path / "planar" / "l2-histogram.svg"));  // one run: no histogram of its own
+  EXPECT_TRUE(fs::exists(tmp.path / "notes.txt"));
+  EXPECT_TRUE(fs::exists(tmp.path / "planar" / "mine.txt"));
+  const std::vector<std::string> now = read_report_manifest(tmp.path.string());
+  EXPECT_EQ(std::find(now.begin(), now.end(), "planar/linf.svg"), now.end());
+}
+
+TEST(ReportManifest, ASectionThatIsGoneLeavesNoFolder) {
+  TempDir tmp;
+  fs::create_directories(tmp.path / "old");
+  std::ofstream(tmp.path / "old" / "a.svg") << "<svg/>";
+  update_report_manifest(tmp.path.string(), {"old/a.svg", "index.html"});
+  const std::vector<std::string> removed = update_report_manifest(tmp.path.string(), {"index.html"});
+  EXPECT_EQ(removed, std::vector<std::string>{"old/a.svg"});
+  EXPECT_FALSE(fs::exists(tmp.path / "old"));
+}
+
+TEST(ReportManifest, NeverRemovesAFileOutsideTheFolder) {
+  TempDir tmp;
+  const fs::path report = tmp.path / "report", outside = tmp.path / "outside";
+  fs::create_directories(report / "sub");
+  fs::create_directories(outside);
+  touch(outside / "keep.txt");
+  touch(report / "user.txt");
+  fs::create_directory_symlink(outside, report / "link");
+  std::ofstream(report / kReportManifestName) << "../outside/keep.txt\n" << (outside / "keep.txt").string() << "\n"
+                                             << "sub/../../outside/keep.txt\n./user.txt\nlink/keep.txt\n"
+                                             << "sub\n\n";
+  update_report_manifest(report.string(), {"index.html"});
+  EXPECT_TRUE(fs::exists(outside / "keep.txt"));
+  EXPECT_TRUE(fs::exists(report / "user.txt"));
+  EXPECT_TRUE(fs::is_directory(report / "sub"));  // folders are never removed by their entry
+  EXPECT_EQ(read_report_manifest(report.string()), std::vector<std::string>{"index.html"});
+}
+
+TEST(ReportManifest, EntriesAreRelativePathsOfPlainNames) {
+  EXPECT_TRUE(is_manifest_entry("index.html"));
+  EXPECT_TRUE(is_manifest_entry("square/linf-histogram.svg"));
+  for (const char* bad : {"", "/etc/passwd", "../x", "a/../../x", "./x", "a/", "a\\b", "..", "a/./b"})
+    EXPECT_FALSE(is_manifest_entry(bad)) << bad;
+}
+
+TEST(Image, RefusesNegativeAndOverflowingSizes) {
+  EXPECT_NO_THROW(Image(0, 0));
+  EXPECT_NO_THROW(Image(3, 0));
+  try {
+    Image(-1, 4);
+    FAIL() << "a negative width was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("-1 x 4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Image(4, -1), std::invalid_argument);
+  EXPECT_THROW(Image(std::numeric_limits<int>::max(), std::numeric_limits<int>::max()), std::invalid_argument);
+}
+
+TEST(Image, PixelsOutsideTheImageAreOutOfRange) {
+  Image image(4, 3, Rgb{1, 2, 3});
+  image.set(3, 2, Rgb{9, 8, 7});
+  EXPECT_TRUE(image.at(3, 2) == (Rgb{9, 8, 7}));
+  EXPECT_TRUE(image.at(0, 0) == (Rgb{1, 2, 3}));
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{4, 0}, {0, 3}, {-1, 0}, {0, -1}, {4, 2}}) {
+    EXPECT_THROW(image.set(x, y, Rgb{}), std::out_of_range) << x << ", " << y;
+    EXPECT_THROW(image.at(x, y), std::out_of_range) << x << ", " << y;
+  }
+  try {
+    image.at(5, 1);
+    FAIL() << "a pixel beyond the width was read";
+  } catch (const std::out_of_range& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("x = 5, y = 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("4 x 3"), std::string::npos) << what;
+  }
+  EXPECT_THROW(Image().at(0, 0), std::out_of_range);
+}
+
+TEST(Rasterizer, ClipsTrianglesBeyondThePictureAndSkipsNonFiniteOnes) {
+  // Framed on a small box: the grid reaches far beyond the picture on every side; one vertex
+  // is huge and one is not a number.
+  Mesh grid = make_grid(6, 6, 10.0, 10.0);
+  grid.V(8, 0) = 1e300;
+  grid.V(20, 1) = std::numeric_limits<double>::quiet_NaN();
+  RasterOptions o;
+  o.width = 40;
+  o.height = 30;
+  o.camera = top_camera();
+  o.fit_box = true;
+  o.box_min = Eigen::Vector3d(4, 4, 0);
+  o.box_max = Eigen::Vector3d(6, 6, 0);
+  const Image image = rasterize(grid.V, grid.F, [](int, double, double, double) { return Rgb{200, 0, 0}; }, o);
+  ASSERT_EQ(image.width, 40);
+  ASSERT_EQ(image.height, 30);
+  EXPECT_FALSE(image.at(20, 15) == (Rgb{255, 255, 255}));  // the middle is covered
 }

@@ -12,38 +12,41 @@ namespace py = pybind11;
 namespace strictmin::python {
 namespace {
 
+// "int", "str", ... for messages.
+std::string type_name(py::handle v) { return py::str(v.get_type().attr("__name__")); }
+
 double real(const std::string& key, py::handle v) {
   if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v))
-    throw py::type_error(key + " must be a number, not " + std::string(py::str(v.get_type().attr("__name__"))));
+    throw py::type_error(key + " must be a number, not " + type_name(v));
   try {
     return v.cast<double>();
   } catch (const py::cast_error&) {
-    throw py::type_error(key + " must be a number, not " + std::string(py::str(v.get_type().attr("__name__"))));
+    throw py::type_error(key + " must be a number, not " + type_name(v));
   }
 }
 
 int integer(const std::string& key, py::handle v) {
   if (py::isinstance<py::bool_>(v) || py::isinstance<py::float_>(v) || py::isinstance<py::str>(v))
-    throw py::type_error(key + " must be an integer, not " + std::string(py::str(v.get_type().attr("__name__"))));
+    throw py::type_error(key + " must be an integer, not " + type_name(v));
   long long x = 0;
   try {
     x = v.cast<long long>();
   } catch (const py::cast_error&) {
     // An int that does not fit (2**63) is out of range; anything else is not an integer.
     if (py::isinstance<py::int_>(v)) throw InputError(key + ": " + std::string(py::str(v)) + " is out of range");
-    throw py::type_error(key + " must be an integer, not " + std::string(py::str(v.get_type().attr("__name__"))));
+    throw py::type_error(key + " must be an integer, not " + type_name(v));
   }
   if (x < INT_MIN || x > INT_MAX) throw InputError(key + ": " + std::to_string(x) + " is out of range");
   return static_cast<int>(x);
 }
 
 bool flag(const std::string& key, py::handle v) {
-  if (!py::isinstance<py::bool_>(v)) throw py::type_error(key + " must be True or False");
+  if (!py::isinstance<py::bool_>(v)) throw py::type_error(key + " must be True or False, not " + type_name(v));
   return v.cast<bool>();
 }
 
 std::string text(const std::string& key, py::handle v) {
-  if (!py::isinstance<py::str>(v)) throw py::type_error(key + " must be a string");
+  if (!py::isinstance<py::str>(v)) throw py::type_error(key + " must be a string, not " + type_name(v));
   return v.cast<std::string>();
 }
 

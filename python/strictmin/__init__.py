@@ -8,6 +8,7 @@ distortion (Levi & Zorin 2014), on numpy arrays.
 See docs/python.md for every function, keyword and the result object.
 """
 
+import decimal
 import numbers
 import os
 import sys
@@ -56,25 +57,96 @@ class Comparison(tuple):
                 f"value_b={self.value_b:.6g}, area_a={self.area_a:.6g}, area_b={self.area_b:.6g})")
 
 
+def _is_real(x):
+    """True for one real number: int, float, Fraction, Decimal, numpy's real scalars (not bool)."""
+    if isinstance(x, (bool, np.bool_)):
+        return False
+    return isinstance(x, (numbers.Real, decimal.Decimal))
+
+
+def _is_index(x):
+    return isinstance(x, numbers.Integral) and not isinstance(x, (bool, np.bool_))
+
+
+def _element_type(a, accepted=_is_real):
+    """What an array holds that `accepted` refuses, for messages: 'str (dtype <U3)',
+    'complex (dtype complex128)', or the type of an object array's first refused element."""
+    if a.dtype.kind == "O":
+        return next((type(x).__name__ for x in a.flat if not accepted(x)), "object")
+    names = {"U": "str", "S": "bytes", "c": "complex", "b": "bool"}
+    return f"{names.get(a.dtype.kind, a.dtype.name)} (dtype {a.dtype})"
+
+
+def _array(x, name, expected):
+    """np.asarray(x); a ValueError naming the argument when x is ragged."""
+    try:
+        return np.asarray(x)
+    except ValueError:
+        raise ValueError(f"{name} must be {expected}, got rows of different lengths") from None
+
+
+def _real_array(x, name):
+    """x as a float64 array; TypeError naming the argument unless it holds real numbers."""
+    a = _array(x, name, "an array of real numbers")
+    if a.dtype.kind in "fiu":
+        return np.ascontiguousarray(a, dtype=np.float64)
+    if a.dtype.kind == "O" and all(_is_real(v) for v in a.flat):
+        return np.ascontiguousarray(a.astype(np.float64))
+    raise TypeError(f"{name} must hold real numbers, not {_element_type(a)}")
+
+
+def _real_number(x, name):
+    """x as a float; TypeError naming the argument unless it is one real number."""
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        if x.dtype.kind in "fiu":
+            return float(x)
+        raise TypeError(f"{name} must be a real number, not {_element_type(x)}")
+    if not _is_real(x):
+        raise TypeError(f"{name} must be a real number, not {type(x).__name__}")
+    return float(x)
+
+
+def _text(x, name):
+    if not isinstance(x, str):
+        raise TypeError(f"{name} must be a string, not {type(x).__name__}")
+    return x
+
+
+def _path(path, function):
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"{function}: path must be a str or os.PathLike, not {type(path).__name__}")
+    return os.fsdecode(os.fspath(path))
+
+
 def _vertices(V, name="V"):
-    V = np.asarray(V)
-    if V.dtype.kind not in "fiu":
-        raise ValueError(f"{name} must hold numbers, got dtype {V.dtype}")
-    V = np.ascontiguousarray(V, dtype=np.float64)
+    V = _real_array(V, name)
     if V.ndim != 2 or V.shape[1] not in (2, 3):
         raise ValueError(f"{name} must be #V by 2 or 3, got shape {V.shape}")
     return V
 
 
+def _integers(a, name):
+    """An object array of Python ints as int64 (out of range: ValueError); TypeError when
+    something else is in it."""
+    if not all(_is_index(v) for v in a.flat):
+        raise TypeError(f"{name} must hold integer indices, not {_element_type(a, _is_index)}")
+    values = [int(v) for v in a.flat]
+    if values and (min(values) < -2**31 or max(values) >= 2**31):
+        raise ValueError(f"{name}: index {max(values) if max(values) >= 2**31 else min(values)} out of range")
+    return np.array(values, dtype=np.int64).reshape(a.shape)
+
+
 def _indices(F, name="F", ndim=2):
-    F = np.asarray(F)
+    F = _array(F, name, "an array of integer indices")
     if F.size == 0:
         F = F.astype(np.int32)
+    if F.dtype.kind == "O":
+        F = _integers(F, name)
     if F.dtype.kind == "f":
         if not np.all(np.isfinite(F)) or np.any(F != np.round(F)):
             raise ValueError(f"{name} must hold integer indices")
     elif F.dtype.kind not in "iu":
-        raise ValueError(f"{name} must hold integer indices, got dtype {F.dtype}")
+        raise TypeError(f"{name} must hold integer indices, not {_element_type(F, _is_index)}")
     if F.ndim != ndim:
         raise ValueError(f"{name} must have {ndim} dimension(s), got shape {F.shape}")
     if F.size and (F.min() < -2**31 or F.max() >= 2**31):
@@ -135,9 +207,7 @@ def read_mesh(path, *, check_geometry=True):
     line does for a map's image (an interpolation target, a frame or a deformation with
     flipped elements). Raises ValueError naming the file, line and reason; warnings
     (unreferenced vertices) go to the warnings module."""
-    if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"read_mesh: path must be a str or os.PathLike, not {type(path).__name__}")
-    V, F, notes = _strictmin.read_mesh(os.fsdecode(os.fspath(path)), bool(check_geometry))
+    V, F, notes = _strictmin.read_mesh(_path(path, "read_mesh"), bool(check_geometry))
     for note in notes:
         warnings.warn(note, stacklevel=2)
     return np.ascontiguousarray(V), np.ascontiguousarray(F)
@@ -146,9 +216,10 @@ def read_mesh(path, *, check_geometry=True):
 def write_mesh(path, V, F, uv=None, quality=None):
     """Write a mesh by extension: .obj (with uv: vt and f v/vt), .off, .mesh (tets), or .ply
     (with quality: a per-face `quality` property MeshLab and ParaView colour)."""
+    path = _path(path, "write_mesh")
     V = _vertices(V)
     F = _faces(F)
-    ext = os.path.splitext(str(path))[1].lower()
+    ext = os.path.splitext(path)[1].lower()
     if uv is not None and ext != ".obj":
         raise ValueError(f"uv is written as an OBJ's vt; {ext or 'a file without extension'} cannot hold it")
     if quality is not None and ext != ".ply":
@@ -156,8 +227,8 @@ def write_mesh(path, V, F, uv=None, quality=None):
     if uv is not None:
         uv = _vertices(uv, "uv")
     if quality is not None:
-        quality = np.ascontiguousarray(quality, dtype=np.float64).reshape(-1)
-    _strictmin.write_mesh(str(path), V, F, uv, quality)
+        quality = _real_array(quality, "quality").reshape(-1)
+    _strictmin.write_mesh(path, V, F, uv, quality)
 
 
 def deform(V, F, handle_indices, handle_positions, method="linf", measure="fd", *, progress=None, verbose=False,
@@ -169,14 +240,15 @@ def deform(V, F, handle_indices, handle_positions, method="linf", measure="fd", 
     Returns a Result with ``positions``."""
     V = _vertices(V)
     F = _faces(F)
-    idx = _indices(np.asarray(handle_indices).reshape(-1), "handle_indices", ndim=1)
-    pos = np.asarray(handle_positions, dtype=np.float64)
+    idx = _indices(_array(handle_indices, "handle_indices", "an array of integer indices").reshape(-1),
+                   "handle_indices", ndim=1)
+    pos = _real_array(handle_positions, "handle_positions")
     if pos.ndim == 1 and idx.size == 1:
         pos = pos.reshape(1, -1)
     if pos.ndim != 2:
         raise ValueError(f"handle_positions must be #H by dim, got shape {pos.shape}")
-    pos = np.ascontiguousarray(pos)
-    return Result(_strictmin.deform(V, F, idx, pos, method, measure, options, _progress(progress, verbose)))
+    return Result(_strictmin.deform(V, F, idx, pos, _text(method, "method"), _text(measure, "measure"), options,
+                                    _progress(progress, verbose)))
 
 
 def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, verbose=False, **options):
@@ -188,7 +260,8 @@ def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, v
     F = _faces(F)
     if init is not None:
         options["init"] = init
-    return Result(_strictmin.param(V, F, method, measure, options, _progress(progress, verbose)))
+    return Result(_strictmin.param(V, F, _text(method, "method"), _text(measure, "measure"), options,
+                                   _progress(progress, verbose)))
 
 
 def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=0.01,
@@ -222,17 +295,14 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     elif field == "given":
         raise ValueError("field takes 'smoothest', 'unit', 'curvature' or a #F by 3 array of directions, not 'given'")
     if edge_length is not None:
-        if isinstance(edge_length, (bool, str)) or not isinstance(edge_length, numbers.Real):
-            raise TypeError("edge_length must be a number")
-        edge_length = float(edge_length)
+        edge_length = _real_number(edge_length, "edge_length")
     if quads is not None:
         if isinstance(quads, bool) or not isinstance(quads, numbers.Integral):
             raise TypeError("quads must be an integer")
         quads = int(quads)
         if not -2**31 <= quads < 2**31:
             raise ValueError(f"quads: {quads} is out of range")
-    if isinstance(curvature_alignment, (bool, str)) or not isinstance(curvature_alignment, numbers.Real):
-        raise TypeError("curvature_alignment must be a number")
+    curvature_alignment = _real_number(curvature_alignment, "curvature_alignment")
     if not isinstance(parallel, bool):
         raise TypeError("parallel must be True or False")
     if cones is not None:
@@ -243,8 +313,8 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
         if cones.size and (cones.min() < -2**31 or cones.max() >= 2**31):
             raise ValueError("cones: an index is out of range")
         cones = [int(q) for q in cones]
-    return Result(_strictmin.gparam(V, F, method, measure, field, directions, edge_length, quads,
-                                    float(curvature_alignment), parallel, cones, options,
+    return Result(_strictmin.gparam(V, F, _text(method, "method"), _text(measure, "measure"), field, directions,
+                                    edge_length, quads, curvature_alignment, parallel, cones, options,
                                     _progress(progress, verbose)))
 
 
@@ -256,13 +326,22 @@ def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **
     V = _vertices(V)
     F = _faces(F)
     V_target = _vertices(V_target, "V_target")
-    if isinstance(t, (str, bytes)):
-        raise TypeError(f"t must be a number or a sequence of numbers in [0, 1], not a string ({t!r})")
-    single = isinstance(t, numbers.Real) or (isinstance(t, np.ndarray) and t.ndim == 0)
-    times = [float(t)] if single else [float(x) for x in t]
-    results = [Result(r) for r in _strictmin.interp(V, F, V_target, times, method, options,
+    single = not isinstance(t, (str, bytes)) and (_is_real(t) or (isinstance(t, np.ndarray) and t.ndim == 0))
+    times = [_real_number(t, "t")] if single else _times(t)
+    results = [Result(r) for r in _strictmin.interp(V, F, V_target, times, _text(method, "method"), options,
                                                    _progress(progress, verbose))]
     return results[0] if single else results
+
+
+def _times(t):
+    """interp's sequence of times as floats; TypeError naming t (or its item) otherwise."""
+    if isinstance(t, (str, bytes)):
+        raise TypeError(f"t must be a number or a sequence of numbers in [0, 1], not a string ({t!r})")
+    try:
+        items = list(t)
+    except TypeError:
+        raise TypeError(f"t must be a number or a sequence of numbers in [0, 1], not {type(t).__name__}") from None
+    return [_real_number(x, f"t[{i}]") for i, x in enumerate(items)]
 
 
 def distortion(V, F, U, measure="arap"):
@@ -272,7 +351,7 @@ def distortion(V, F, U, measure="arap"):
     V = _vertices(V)
     F = _faces(F)
     U = _vertices(U, "U")
-    return np.ascontiguousarray(_strictmin.distortion(V, F, U, measure)["distortion"])
+    return np.ascontiguousarray(_strictmin.distortion(V, F, U, _text(measure, "measure"))["distortion"])
 
 
 def element_weights(V, F):
@@ -287,10 +366,11 @@ def compare(d1, d2, weights=None, value_tolerance=1e-6, area_tolerance=1e-9):
     Comparison whose ``order`` is -1 when d1 is less distorting, 0 equivalent, 1 more, and
     ``level`` the first differing level (-1 when equivalent). weights: the elements' areas
     (default: all 1)."""
-    d1 = np.ascontiguousarray(d1, dtype=np.float64).reshape(-1)
-    d2 = np.ascontiguousarray(d2, dtype=np.float64).reshape(-1)
-    w = np.ones_like(d1) if weights is None else np.ascontiguousarray(weights, dtype=np.float64).reshape(-1)
-    value_tolerance, area_tolerance = float(value_tolerance), float(area_tolerance)
+    d1 = _real_array(d1, "d1").reshape(-1)
+    d2 = _real_array(d2, "d2").reshape(-1)
+    w = np.ones_like(d1) if weights is None else _real_array(weights, "weights").reshape(-1)
+    value_tolerance = _real_number(value_tolerance, "value_tolerance")
+    area_tolerance = _real_number(area_tolerance, "area_tolerance")
     if not (value_tolerance >= 0 and area_tolerance >= 0):  # also refuses nan
         raise ValueError(f"value_tolerance and area_tolerance must be >= 0, got {value_tolerance} and {area_tolerance}")
     return Comparison(*_strictmin.compare(d1, d2, w, value_tolerance, area_tolerance))

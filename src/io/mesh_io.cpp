@@ -62,9 +62,9 @@ void write_mesh(const std::string& path, const Mesh& mesh, const MeshWriteOption
   if (mesh.F.cols() != 3 && mesh.F.cols() != 4)
     throw InputError("cannot write " + path + ": elements have " + std::to_string(mesh.F.cols()) +
                      " corners (need 3 or 4)");
-  // Indices a reader would refuse (a map's coordinates are written as they are: a solve that
-  // failed numerically still shows its map).
-  check_mesh_structure(mesh, "cannot write " + path, /*require_finite=*/false);
+  // What a reader would refuse, before any file is made: indices out of range, and coordinates
+  // or UVs that are not finite ("nan" and "inf" are no numbers in OBJ, OFF, PLY or MEDIT).
+  check_mesh_structure(mesh, "cannot write " + path, /*require_finite=*/true);
   if (options.element_quality && options.element_quality->size() != mesh.F.rows())
     throw InputError("cannot write " + path + ": element_quality has " +
                      std::to_string(options.element_quality->size()) + " values, the mesh has " +

@@ -76,17 +76,21 @@ class Validator {
     if (F.rows() > 0 && tets_ && V.cols() != 3) fail("tetrahedra need 3D vertex coordinates, the vertices are 2D");
   }
 
+  static std::string non_finite_name(double value) { return std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf"; }
+
   void check_finite() const {
     const auto& V = mesh_.V;
     for (Eigen::Index i = 0; i < V.rows(); ++i)
       for (Eigen::Index k = 0; k < V.cols(); ++k)
         if (!std::isfinite(V(i, k)))
-          fail("vertex " + std::to_string(i) + " (0-based) has a non-finite coordinate (" +
-               (std::isnan(V(i, k)) ? "nan" : V(i, k) > 0 ? "inf" : "-inf") + ")");
-    if (mesh_.has_uv())
-      for (Eigen::Index i = 0; i < mesh_.UV.rows(); ++i)
-        if (!mesh_.UV.row(i).allFinite())
-          fail("texture coordinate " + std::to_string(i) + " (0-based) has a non-finite value");
+          fail("vertex " + std::to_string(i) + " (0-based) has a non-finite coordinate (" + non_finite_name(V(i, k)) +
+               ")");
+    if (!mesh_.has_uv()) return;
+    for (Eigen::Index i = 0; i < mesh_.UV.rows(); ++i)
+      for (Eigen::Index k = 0; k < mesh_.UV.cols(); ++k)
+        if (!std::isfinite(mesh_.UV(i, k)))
+          fail("texture coordinate " + std::to_string(i) + " (0-based) has a non-finite value (" +
+               non_finite_name(mesh_.UV(i, k)) + ")");
   }
 
   void check_indices() const {
@@ -317,6 +321,10 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
   Validator(mesh, source.empty() ? std::string("mesh") : source).check_structure(require_finite);
+}
+
+bool coordinates_are_finite(const Mesh& mesh) {
+  return mesh.V.allFinite() && (!mesh.has_uv() || mesh.UV.allFinite());
 }
 
 std::vector<int> unreferenced_vertices(const Mesh& mesh) {

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
 #include "markup.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/report/histogram.h"
+#include "strictmin/report/report_manifest.h"
 #include "strictmin/report/strict_order.h"
 
 namespace strictmin {
@@ -337,6 +339,9 @@ std::string index_html(const HtmlReport& r) {
 void write_index_html(const std::string& path, const HtmlReport& report) {
   const std::string text = index_html(report);
   write_file_atomically(path, [&](std::ostream& os) { os << text; });
+  const std::filesystem::path index(path);
+  const std::filesystem::path folder = index.has_parent_path() ? index.parent_path() : ".";
+  update_report_manifest(folder.string(), report_files(report, index.filename().string()));
 }
 
 }  // namespace strictmin

@@ -8,13 +8,30 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
 
 namespace strictmin {
 
-Image::Image(int w, int h, Rgb fill) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3) {
+namespace {
+
+// The bytes of a W x H image; std::invalid_argument for a negative size or one whose byte count
+// does not fit a vector.
+std::size_t image_bytes(int w, int h) {
+  if (w < 0 || h < 0)
+    throw std::invalid_argument("Image: negative size " + std::to_string(w) + " x " + std::to_string(h));
+  const std::size_t most = std::vector<std::uint8_t>().max_size() / 3;
+  if (h > 0 && static_cast<std::size_t>(w) > most / static_cast<std::size_t>(h))
+    throw std::invalid_argument("Image: " + std::to_string(w) + " x " + std::to_string(h) +
+                                " pixels overflow the byte count");
+  return static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3;
+}
+
+}  // namespace
+
+Image::Image(int w, int h, Rgb fill) : width(w), height(h), rgb(image_bytes(w, h)) {
   for (std::size_t i = 0; i < rgb.size(); i += 3) {
     rgb[i] = fill.r;
     rgb[i + 1] = fill.g;
@@ -22,13 +39,22 @@ Image::Image(int w, int h, Rgb fill) : width(w), height(h), rgb(static_cast<std:
   }
 }
 
+std::size_t Image::byte_index(int x, int y, const char* caller) const {
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  if (x < 0 || y < 0 || x >= width || y >= height || i + 2 >= rgb.size())
+    throw std::out_of_range(std::string("Image::") + caller + ": pixel x = " + std::to_string(x) + ", y = " +
+                            std::to_string(y) + " is outside the " + std::to_string(width) + " x " +
+                            std::to_string(height) + " image");
+  return i;
+}
+
 Rgb Image::at(int x, int y) const {
-  const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+  const std::size_t i = byte_index(x, y, "at");
   return {rgb[i], rgb[i + 1], rgb[i + 2]};
 }
 
 void Image::set(int x, int y, Rgb c) {
-  const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+  const std::size_t i = byte_index(x, y, "set");
   rgb[i] = c.r;
   rgb[i + 1] = c.g;
   rgb[i + 2] = c.b;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace strictmin {
 
@@ -16,6 +17,18 @@ Camera oblique_camera() {
 }
 
 Camera top_camera() { return Camera{}; }
+
+namespace {
+
+// The pixels [first, last] whose centres can lie in [lo, hi], clipped to 0..size-1 (none
+// when first > last). Clamped before the conversion: a huge coordinate is no int.
+std::pair<int, int> pixel_span(double lo, double hi, int size) {
+  const int first = static_cast<int>(std::floor(std::clamp(lo, 0.0, static_cast<double>(size))));
+  const int last = static_cast<int>(std::ceil(std::clamp(hi, -1.0, static_cast<double>(size - 1))));
+  return {first, last};
+}
+
+}  // namespace
 
 Image rasterize(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const FaceShader& shader,
                 const RasterOptions& o) {
@@ -80,7 +93,7 @@ Image rasterize(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Fac
     const Eigen::Vector3d a = P.row(F(f, 0)).transpose(), b = P.row(F(f, 1)).transpose(),
                           c = P.row(F(f, 2)).transpose();
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-    if (std::abs(area) < 1e-12) continue;
+    if (!(std::abs(area) >= 1e-12) || !std::isfinite(area)) continue;  // degenerate, or a corner not finite
     double shade = 1.0;
     if (o.shading) {
       const Eigen::Vector3d e1 = (V.row(F(f, 1)) - V.row(F(f, 0))).transpose();
@@ -90,10 +103,8 @@ Image rasterize(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Fac
       shade = nn > 0 ? 0.3 + 0.7 * std::abs(n.dot(light)) / nn : 0.3;
     }
     const double len[3] = {(c - b).head<2>().norm(), (a - c).head<2>().norm(), (b - a).head<2>().norm()};
-    const int px0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
-    const int px1 = std::min(W - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
-    const int py0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
-    const int py1 = std::min(H - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+    const auto [px0, px1] = pixel_span(std::min({a.x(), b.x(), c.x()}), std::max({a.x(), b.x(), c.x()}), W);
+    const auto [py0, py1] = pixel_span(std::min({a.y(), b.y(), c.y()}), std::max({a.y(), b.y(), c.y()}), H);
     for (int y = py0; y <= py1; ++y) {
       for (int x = px0; x <= px1; ++x) {
         const double qx = x + 0.5, qy = y + 0.5;

@@ -74,6 +74,39 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_a_report_into_an_earlier_ones_folder_removes_its_stale_files(self):
+        # The pictures of a run no longer in the report stayed beside the new index.html.
+        for method in ("l2", "linf"):
+            run("deform", "--example", "square", "--method", method, "-o", f"{method}.obj", "--distortion",
+                f"{method}.txt", "--summary", f"{method}.json", "--quiet", cwd=self.dir)
+        out = os.path.join(self.dir, "out")
+        run("report", "out", "--run", "l2.json", "--run", "linf.json", cwd=self.dir)
+        stale = [os.path.join(out, "square", name) for name in ("linf.svg", "linf-histogram.svg", "linf.json")]
+        for path in stale:
+            self.assertTrue(os.path.exists(path), path)
+        cli_support.write(os.path.join(out, "notes.txt"), "mine\n")
+        cli_support.write(os.path.join(out, "square", "notes.txt"), "mine\n")
+        cli_support.write(os.path.join(self.dir, "keep.txt"), "mine\n")
+        with open(os.path.join(out, ".strictmin-report"), "a", encoding="utf-8") as f:
+            f.write("../keep.txt\n" + os.path.join(self.dir, "keep.txt") + "\n")  # never outside the folder
+        run("report", "out", "--run", "l2.json", cwd=self.dir)
+        for path in stale:
+            self.assertFalse(os.path.exists(path), path)
+        self.check_folder(out)
+        for path in (os.path.join(out, "notes.txt"), os.path.join(out, "square", "notes.txt"),
+                     os.path.join(self.dir, "keep.txt"), os.path.join(out, "square", "l2.svg")):
+            self.assertTrue(os.path.exists(path), path)
+        listed = read(os.path.join(out, ".strictmin-report")).split()
+        self.assertIn("index.html", listed)
+        self.assertIn("square/l2.svg", listed)
+        self.assertNotIn("../keep.txt", listed)
+        # A task's --report into that folder: the comparison's section goes, the user's files stay.
+        run("deform", "--example", "square", "--method", "l2", "--report", out, "--quiet")
+        self.assertFalse(os.path.exists(os.path.join(out, "square", "l2.svg")))
+        self.assertTrue(os.path.exists(os.path.join(out, "square", "notes.txt")))
+        self.assertTrue(os.path.exists(os.path.join(out, "view.svg")))
+        self.check_folder(out)
+
     def test_only_runs_of_one_problem_are_compared(self):
         # An ARAP run was ranked against fd runs ("L-inf is less distorting than L-inf"), two
         # meshes named m.obj in two folders shared a section, and a capped solve read as its

@@ -185,3 +185,55 @@ def test_read_mesh_of_a_flipped_map(tmp_path):
         strictmin.read_mesh(None)
     with pytest.raises(TypeError, match="path must be a str"):
         strictmin.read_mesh(b"flipped.obj")
+
+
+def test_wrong_types_name_the_argument(square, tmp_path):
+    """An argument of the wrong type names itself and what it takes (numpy's and pybind11's
+    own messages named neither: "could not convert string to float: 'a'", "'complex' object
+    is not iterable", "incompatible function arguments")."""
+    import decimal
+    V, F, idx, pos = square
+    cases = [
+        (lambda: strictmin.deform(V.astype(str), F, idx, pos), "V must hold real numbers, not str"),
+        (lambda: strictmin.deform(V + 0j, F, idx, pos), "V must hold real numbers, not complex"),
+        (lambda: strictmin.deform(V, F.astype(str), idx, pos), "F must hold integer indices, not str"),
+        (lambda: strictmin.deform(V, F, ["a"] * len(idx), pos), "handle_indices must hold integer indices, not str"),
+        (lambda: strictmin.deform(V, F, None, pos), "handle_indices must hold integer indices, not NoneType"),
+        (lambda: strictmin.deform(V, F, idx, pos.astype(str)), "handle_positions must hold real numbers, not str"),
+        (lambda: strictmin.deform(V, F, idx, pos * 1j), "handle_positions must hold real numbers, not complex"),
+        (lambda: strictmin.deform(V, F, idx, [[0, "a"]] * len(idx)), "handle_positions must hold real numbers, not str"),
+        (lambda: strictmin.deform(V, F, idx, pos, method=3), "method must be a string, not int"),
+        (lambda: strictmin.deform(V, F, idx, pos, measure=None), "measure must be a string, not NoneType"),
+        (lambda: strictmin.param(V, F, init=3), "init must be a string, not int"),
+        (lambda: strictmin.deform(V, F, idx, pos, linf_min_l2=1), "linf_min_l2 must be True or False, not int"),
+        (lambda: strictmin.interp(V, F, V * 2, 0.5 + 1j), "t must be a number or a sequence of numbers in \\[0, 1\\], not complex"),
+        (lambda: strictmin.interp(V, F, V * 2, None), "not NoneType"),
+        (lambda: strictmin.interp(V, F, V * 2, [0.25, 0.5 + 1j]), "t\\[1\\] must be a real number, not complex"),
+        (lambda: strictmin.interp(V, F, V * 2, ["0.5"]), "t\\[0\\] must be a real number, not str"),
+        (lambda: strictmin.interp(V, F, V * 2, np.array(0.5j)), "t must be a real number, not complex"),
+        (lambda: strictmin.interp(V, F, (V * 2).astype(str), 0.5), "V_target must hold real numbers, not str"),
+        (lambda: strictmin.distortion(V, F, V.astype(str)), "U must hold real numbers, not str"),
+        (lambda: strictmin.distortion(V, F, V, measure=1), "measure must be a string, not int"),
+        (lambda: strictmin.compare(["a"], [1.0]), "d1 must hold real numbers, not str"),
+        (lambda: strictmin.compare([1.0], [1j]), "d2 must hold real numbers, not complex"),
+        (lambda: strictmin.compare([1.0], [1.0], [None]), "weights must hold real numbers, not NoneType"),
+        (lambda: strictmin.compare([1.0], [1.0], value_tolerance="x"), "value_tolerance must be a real number, not str"),
+        (lambda: strictmin.compare([1.0], [1.0], area_tolerance=1j), "area_tolerance must be a real number, not complex"),
+        (lambda: strictmin.write_mesh(tmp_path / "q.ply", V, F, quality=["a"] * len(F)),
+         "quality must hold real numbers, not str"),
+        (lambda: strictmin.write_mesh(3, V, F), "write_mesh: path must be a str or os.PathLike, not int"),
+        (lambda: strictmin.gparam(V, F, edge_length=1j), "edge_length must be a real number, not complex"),
+        (lambda: strictmin.gparam(V, F, curvature_alignment="0.1"), "curvature_alignment must be a real number, not str"),
+    ]
+    for call, message in cases:
+        with pytest.raises(TypeError, match=message):
+            call()
+    with pytest.raises(ValueError, match="handle_positions must be an array of real numbers, got rows of different"):
+        strictmin.deform(V, F, idx[:2], [[0.0, 0.0], [1.0]])
+    with pytest.raises(ValueError, match="F: index 4294967296 out of range"):
+        strictmin.deform(V, np.array([[0, 1, 2**32]], dtype=object), idx, pos)
+    # Real numbers of other types are taken as numbers.
+    r = strictmin.interp(V, F, V * 2, decimal.Decimal("0.5"), method="l2")
+    assert r.t == 0.5
+    assert [x.t for x in strictmin.interp(V, F, V * 2, [decimal.Decimal("0.25"), np.float32(0.5)], method="l2")] == [0.25, 0.5]
+    assert strictmin.compare(np.array([1, 2], dtype=object), [decimal.Decimal(1), 2]).order == 0

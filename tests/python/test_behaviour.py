@@ -325,3 +325,17 @@ def test_blas_kernels_reports_the_kernels_and_a_better_set_only_after_the_generi
                          env=env, capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "('Haswell', None)"
+
+
+def test_write_mesh_refuses_coordinates_that_are_not_finite(tmp_path):
+    # "nan" and "inf" in a file are read back by no reader: refused before any file is made.
+    V, F = grid(2)
+    bad = V.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(ValueError, match="vertex 3"):
+        strictmin.write_mesh(tmp_path / "v.obj", bad, F)
+    uv = V[:, :2].copy()
+    uv[2, 0] = np.inf
+    with pytest.raises(ValueError, match=r"texture coordinate 2 \(0-based\) has a non-finite value \(inf\)"):
+        strictmin.write_mesh(tmp_path / "u.obj", V, F, uv=uv)
+    assert list(tmp_path.iterdir()) == []

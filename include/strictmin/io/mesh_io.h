@@ -39,7 +39,9 @@ struct MeshWriteOptions {
 // Writes `mesh` (V may be 2D: written with z = 0 where the format needs 3 coordinates).
 // OBJ with mesh.has_uv() writes vt lines and f v/vt corners. For a tet mesh, .obj/.off/.ply
 // write its boundary triangles, .mesh writes vertices, boundary triangles and tets.
-// Throws InputError when the file cannot be written.
+// Throws InputError, before any file is made, for a mesh a reader would refuse (indices out
+// of range; a coordinate or UV that is not finite: the file, the vertex or texture coordinate
+// and the value are named), and when the file cannot be written.
 void write_mesh(const std::string& path, const Mesh& mesh, const MeshWriteOptions& options = {});
 
 // Boundary faces of a tet mesh (#B by 3, oriented outward for positively oriented tets).

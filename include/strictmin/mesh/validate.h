@@ -38,6 +38,10 @@ constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
 // out of range read and wrote out of bounds before).
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite = true);
 
+// True when every vertex coordinate and texture coordinate is finite (check_mesh_structure
+// with require_finite names the first one that is not).
+bool coordinates_are_finite(const Mesh& mesh);
+
 // Vertices used by no element.
 std::vector<int> unreferenced_vertices(const Mesh& mesh);
 

@@ -67,7 +67,9 @@ std::string verdict_text(const StrictComparison& c, const std::string& name_a, c
                          double total_area);
 
 std::string index_html(const HtmlReport& report);
-// Writes index_html(report) to path atomically.
+// Writes index_html(report) to path atomically, then the folder's manifest of the files the
+// report refers to, removing the previous report's files it no longer refers to
+// (report/report_manifest.h).
 void write_index_html(const std::string& path, const HtmlReport& report);
 
 }  // namespace strictmin
