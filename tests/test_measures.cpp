@@ -134,6 +134,31 @@ TEST(Measures, ClosedForms3d) {
               1e-14);
 }
 
+// A collapsed element (a tet with two vertices on one point: det J is 1e-17 of either sign by
+// rounding) counts as flipped and has infinite qc, whichever sign rounding gave it; a thin but
+// whole element keeps its finite qc.
+TEST(Measures, CollapsedElementsAreFlippedWithInfiniteQc) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (double last : {1e-17, -1e-17, 0.0}) {
+    const Eigen::Matrix3d J = Eigen::Vector3d(1.0, 0.7, last).asDiagonal();
+    EXPECT_TRUE(is_flipped(J)) << last;
+    EXPECT_TRUE(std::isinf(distortion(Measure::Quasiconformal, J, I))) << last;
+  }
+  // Collapsed onto a line through rounding: columns a, b, a + b.
+  Eigen::Matrix3d J;
+  J.col(0) = Eigen::Vector3d(0.1, 0.2, 0.3);
+  J.col(1) = Eigen::Vector3d(0.7, -0.1, 0.3);
+  J.col(2) = J.col(0) + J.col(1);
+  EXPECT_TRUE(is_flipped(J));
+  EXPECT_TRUE(std::isinf(distortion(Measure::Quasiconformal, J, I)));
+  const Eigen::Matrix3d thin = Eigen::Vector3d(1.0, 1.0, 1e-9).asDiagonal();
+  EXPECT_FALSE(is_flipped(thin));
+  EXPECT_NEAR(distortion(Measure::Quasiconformal, thin, I), 1e9, 1e-3);
+  const Eigen::Matrix2d flat = Eigen::Vector2d(2.0, 1e-14).asDiagonal();
+  EXPECT_TRUE(is_flipped(flat));
+  EXPECT_FALSE(is_flipped(Eigen::Matrix2d(Eigen::Vector2d(2.0, 1e-6).asDiagonal())));
+}
+
 TEST(Measures, Names) {
   for (Measure m : {Measure::FieldDeviation, Measure::Arap, Measure::Asap, Measure::Quasiconformal, Measure::Isometric})
     EXPECT_EQ(parse_measure(measure_name(m)), m);

@@ -109,7 +109,7 @@ double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
     case Measure::Quasiconformal: {
       const Eigen::VectorXd s = signed_singular_values(J);
       const double smin = s(s.size() - 1);
-      if (J.rows() == J.cols() && smin <= 0) return inf;
+      if (J.rows() == J.cols() && (smin <= 0 || is_flipped(J))) return inf;  // flipped or collapsed
       return smin > 0 ? s(0) / smin : inf;
     }
     case Measure::Isometric: {
@@ -123,7 +123,9 @@ double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
 }
 
 bool is_flipped(const Eigen::MatrixXd& J) {
-  return J.rows() == J.cols() && J.determinant() <= 0;
+  if (J.rows() != J.cols()) return false;
+  const Eigen::VectorXd s = signed_singular_values(J);  // the last one negative when det J < 0
+  return s(s.size() - 1) <= kCollapsedRatio * s(0);
 }
 
 }  // namespace strictmin

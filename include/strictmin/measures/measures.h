@@ -36,7 +36,11 @@ Eigen::MatrixXd closest_similarity(const Eigen::MatrixXd& J);
 // D(J) for the measure; R is only read by fd.
 double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R);
 
-// det J <= 0 (square J only; a non-square J never counts as flipped).
+// det J <= 0 (square J only; a non-square J never counts as flipped). A collapsed element
+// counts too: its smallest singular value at most kCollapsedRatio times its largest, where
+// rounding alone decides the sign of det J (a tet with two vertices on one point has det J
+// of 1e-17 either way); qc is infinite there.
 bool is_flipped(const Eigen::MatrixXd& J);
+constexpr double kCollapsedRatio = 1e-12;
 
 }  // namespace strictmin
