@@ -250,7 +250,12 @@ Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const
     const Eigen::VectorXi positive = positively_oriented(problem, Y);
     return positive.size() - positive.sum();
   };
-  if (flipped(r.positions) > flipped(X)) return X;
+  const auto flips_l2 = flipped(r.positions), flips_start = flipped(X);
+  if (flips_l2 > flips_start) {
+    *note = "the l2 local-global map (max " + std::to_string(max_of(r.distortion, bounds)) + ") was not taken as the start: "
+            "it has more flipped elements (" + std::to_string(flips_l2) + " against " + std::to_string(flips_start) + "); ";
+    return X;
+  }
   *note = "started from the l2 local-global map (" + std::to_string(r.iterations) + " steps, max " +
           std::to_string(max_of(r.distortion, bounds)) + "); ";
   return r.positions;

@@ -128,6 +128,28 @@ class Interp(unittest.TestCase):
         p = run("interp", self.src, self.dst, "--t", "0.5", "--lg-extrapolation", "0", "--quiet", check_code=1)
         self.assertIn("--lg-extrapolation does not apply to interp", p.stderr)
 
+    def test_a_discarded_l2_start_is_said(self):
+        # linf's local-global starts from the l2 local-global map only when it has no more
+        # flipped elements than the given start; when it had more, the summary said nothing
+        # and linf ended above l2 without a word. An 8 x 8 grid bent, its centre pushed over.
+        n = 8
+        rest = [(i / n, j / n) for j in range(n + 1) for i in range(n + 1)]
+        faces = [f for j in range(n) for i in range(n)
+                 for a in [i + (n + 1) * j] for f in ((a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1))]
+        bent = [(x + 0.3 * math.sin(3 * y), 1.2 * y + 0.1 * x * x) for x, y in rest]
+        centre = (n + 1) * (n // 2) + n // 2
+        bent[centre] = (bent[centre][0] + 0.3, bent[centre][1] + 0.3)
+
+        def obj(name, points):
+            text = "".join(f"v {x} {y} 0\n" for x, y in points) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
+            path = os.path.join(self.dir, name)
+            with open(path, "w") as f:
+                f.write(text)
+            return path
+        src, dst = obj("g.obj", rest), obj("g_pushed.obj", bent)
+        s = json.loads(run("interp", src, dst, "--t", "0.5", "--method", "linf", "--summary", "-", "--quiet").stdout)
+        self.assertIn("was not taken as the start: it has more flipped elements (", s["frames"][0]["message"])
+
     def test_report_command_points_to_interps_own_report(self):
         summary = os.path.join(self.dir, "ip.json")
         run("interp", self.src, self.dst, "--t", "0.5", "--method", "l2", "-o", os.path.join(self.dir, "ip"), "--summary",
