@@ -143,13 +143,13 @@ int run_interp(const InterpArgs& a) {
       worst = worse_status(worst, f.result.status);
       progress(a.out, "warning: t = " + std::to_string(t) + ": " + status_name(f.result.status) + ": " + f.result.message);
     }
-    nlohmann::json j = interp_frame_summary(f, interp.kind(), options, path);
+    nlohmann::json j = interp_frame_summary(f, options, path);
     j["time_s"] = seconds_since(tf);
     frames.push_back(j);
     last_distortion = f.result.distortion;
     if (!a.report.dir.empty()) kept.push_back(f);
     progress(a.out, "interp: t = " + std::to_string(t) + ": max distortion " + std::to_string(f.stats.max) +
-                        (interp.kind() == InterpKind::Surface ? "" : ", " + std::to_string(f.stats.flipped) + " flipped") +
+                        ", " + flipped_phrase(f.stats.flipped) +
                         (path.empty() ? "" : ", wrote " + path));
   }
   s["frames"] = frames;

@@ -28,9 +28,15 @@ namespace {
 constexpr double kNoBound = std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace {
+// qc, iso >= 1: reports show their excess over 1 (the pictures' scale starts at 1, blue =
+// undistorted), and their cards say so (describe_measure).
+bool shown_as_excess(Measure measure) { return measure == Measure::Quasiconformal || measure == Measure::Isometric; }
+}  // namespace
+
 Eigen::VectorXd report_values(Measure measure, const Eigen::VectorXd& distortion) {
-  if (measure != Measure::Quasiconformal && measure != Measure::Isometric) return distortion;
-  return distortion.array() - 1.0;  // qc, iso >= 1: the pictures' scale starts at 1 (blue = undistorted)
+  if (!shown_as_excess(measure)) return distortion;
+  return distortion.array() - 1.0;
 }
 
 MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure measure) {
@@ -67,8 +73,7 @@ MethodRun method_run(const std::string& method, const InterpFrame& f) {
   r.mapped = f.mesh;
   r.distortion = f.result.distortion;
   r.weights = f.weights;
-  const bool surface = f.mesh.element_type() == ElementType::Triangle && f.mesh.dim() == 3 && !f.mesh.is_planar();
-  r.flipped = surface ? -1 : f.stats.flipped;  // null in the summary: no orientation in 3D
+  r.flipped = f.stats.flipped;  // -1 on a surface: no orientation in 3D
   r.time_s = f.result.time_s;
   r.status = status_name(f.result.status);
   r.message = f.result.message;
@@ -150,7 +155,8 @@ std::string measure_description(const std::string& m) {
 
 void describe_measure(SectionInput& in, const std::string& measure) {
   in.measure = measure_description(measure);
-  in.value_name = measure == "qc" || measure == "iso" ? "distortion \u2212 1" : "distortion";
+  const auto m = parse_measure(measure);
+  in.value_name = m && shown_as_excess(*m) ? "distortion \u2212 1" : "distortion";
 }
 
 std::string input_title(const std::string& input) {

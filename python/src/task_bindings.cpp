@@ -264,7 +264,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   for (size_t i = 0; i < frames.size(); ++i) {
     const InterpFrame& f = frames[i];
     nlohmann::json s = interp_summary(source, interp->kind(), options, "", "");
-    nlohmann::json frame = interp_frame_summary(f, interp->kind(), options, "");
+    nlohmann::json frame = interp_frame_summary(f, options, "");
     frame["time_s"] = seconds[i];
     s["frames"] = nlohmann::json::array({frame});
     s["time_s"] = seconds[i];

@@ -208,13 +208,12 @@ nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpO
   return s;
 }
 
-nlohmann::json interp_frame_summary(const InterpFrame& f, InterpKind kind, const InterpOptions& options,
+nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& options,
                                     const std::string& output) {
   nlohmann::json j;
   j["t"] = f.t;
   j["output"] = output;
-  add_distortion_summary(j, f.stats);
-  if (kind == InterpKind::Surface) j["flipped"] = nullptr;  // no orientation to flip
+  add_distortion_summary(j, f.stats);  // flipped null on a surface (stats.flipped -1)
   add_status_summary(j, f.result);
   add_solver_summary(j, options.solver, f.result);
   add_local_global_summary(j, f.result);

@@ -70,7 +70,7 @@ nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpO
                               const std::string& source_name, const std::string& target_name);
 
 // One entry of interp's frames: every key but time_s. `output` is the frame's file ("" for none).
-nlohmann::json interp_frame_summary(const InterpFrame& frame, InterpKind kind, const InterpOptions& options,
+nlohmann::json interp_frame_summary(const InterpFrame& frame, const InterpOptions& options,
                                     const std::string& output);
 
 }  // namespace strictmin

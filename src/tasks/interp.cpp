@@ -199,7 +199,9 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
   }
   out.weights = p.weights;
   out.stats = distortion_stats(out.result.distortion, p.weights);
-  if (kind_ != InterpKind::Surface)
+  if (kind_ == InterpKind::Surface)
+    out.stats.flipped = -1;  // not defined: a 3x2 Jacobian has no orientation (DistortionStats)
+  else
     for (int e = 0; e < p.num_elements(); ++e) out.stats.flipped += is_flipped(p.jacobian(e, X)) ? 1 : 0;
   return out;
 }
