@@ -122,7 +122,7 @@ TEST(CheckProblem, AnEqualityOnFixedVerticesThatFailsIsRefused) {
     SolverOptions o;
     o.method = m;
     const Result r = run_method(p, o);
-    EXPECT_EQ(r.status, SolveStatus::Solved) << method_name(m);
+    EXPECT_EQ(r.status, SolveStatus::Solved) << method_name(m) << ": " << r.message;
     EXPECT_NEAR(r.positions(0, 0), p.positions(0, 0), 1e-12) << method_name(m);
   }
 }

@@ -400,3 +400,36 @@ TEST(Direct, MovingRingsAgainstAllVerticesAndExact) {
     }
   }
 }
+
+// Unpinned levels (an injected level solver) keep bounded cones with large multipliers, and a
+// map within the feasibility tolerance of the bounds can end below the certified bound of the
+// bounds as given (docs/strict.md, "Levels within the feasibility tolerance"). Such a solve
+// says so with both figures, and its reported bound is clamped to its k.
+TEST(Direct, ALevelBelowItsCertifiedBoundSaysSo) {
+  const Problem p = test_support::random_target_bar();
+  DirectOptions o;
+  o.k_min = 0;
+  o.moving_rings = 0;
+  auto notes = std::make_shared<std::vector<std::string>>();
+  auto bounds_below = std::make_shared<int>(0);
+  o.level_solver = [=](const Problem& level, const LinfOptions& lo, const Eigen::MatrixXd& X) {
+    Problem q = level;
+    q.positions = X;
+    Result r = solve_linf(q, lo);
+    if (r.message.find("below the certified bound of the fixed bounds as given") != std::string::npos) {
+      notes->push_back(r.message);
+      double k = 0;
+      for (int e = 0; e < r.distortion.size(); ++e)
+        if (!(lo.element_bounds(e) >= 0)) k = std::max(k, r.distortion(e));
+      if (r.lower_bound <= k + 1e-15) ++*bounds_below;
+    }
+    return r;
+  };
+  const Result r = solve_direct(p, o);
+  ASSERT_TRUE(r.usable()) << r.message;
+  ASSERT_FALSE(notes->empty()) << "no unpinned level ended below its bound on this bar";
+  EXPECT_EQ(*bounds_below, static_cast<int>(notes->size()));
+  EXPECT_NE(notes->front().find("over them by at most"), std::string::npos) << notes->front();
+  std::printf("%zu of %d levels below their certified bound; first: %s\n", notes->size(), r.iterations,
+              notes->front().c_str());
+}
