@@ -54,6 +54,12 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
 
 void add_local_global_summary(nlohmann::json& s, const Result& r) {
   s["local_global_iterations"] = r.iterations;
+  // direct: its levels' local-global steps together (r.iterations counts the levels).
+  if (s.contains("levels")) {
+    int steps = 0;
+    for (const auto& h : r.history) steps += std::max(0, h.inner_iterations);
+    s["local_global_iterations"] = steps;
+  }
   // relax: its start's global steps come first; the sweeps are the records with a move.
   if (s.contains("sweeps")) {
     int sweeps = 0;

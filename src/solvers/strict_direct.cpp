@@ -246,8 +246,11 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     IterationRecord rec;
     rec.iteration = step;
     rec.max_distortion = k;
-    rec.lower_bound = any_level_free ? r.lower_bound : k;  // nothing moved: exact
-    rec.certified_gap = gap;
+    // A local-global level's bound is its last field-deviation step's, with the rotations
+    // held: no bound on the level's own measure (DirectOptions::level_bound_certifies).
+    rec.lower_bound = !options.level_bound_certifies ? NAN : any_level_free ? r.lower_bound : k;  // nothing moved: exact
+    rec.certified_gap = options.level_bound_certifies ? gap : NAN;
+    rec.inner_iterations = r.iterations;
     rec.time_s = seconds_since(t0);
     out.history.push_back(rec);
     if (options.progress) {

@@ -48,6 +48,19 @@ class Statuses(unittest.TestCase):
             # The global steps' bound is not a bound on ARAP: it has its own key.
             self.assertNotIn("fd_step_lower_bound", s)  # l2 has none
 
+    def test_arap_direct_summary_claims_no_level_gap(self):
+        # A local-global level's bound is its last field-deviation step's, with the rotations
+        # held: worst_level_gap is null (it quoted that step's gap), lower_bound null, and
+        # local_global_iterations counts the levels' steps (it repeated the level count).
+        s = json.loads(run("deform", "--example", "square", "--measure", "arap", "--method", "direct",
+                           "--summary", "-", "--quiet", check_code=None).stdout)
+        self.assertGreater(s["levels"], 1)
+        self.assertIsNone(s["worst_level_gap"])
+        self.assertIsNone(s["lower_bound"])
+        self.assertIsInstance(s["fd_step_lower_bound"], float)
+        self.assertGreater(s["local_global_iterations"], s["levels"])
+        self.assertEqual(len(s["history"]), s["levels"])
+
     def test_each_criterion_is_the_statuss(self):
         def summary(*args, code):
             return json.loads(run("deform", "--example", "square", *args, "--summary", "-", "--quiet",

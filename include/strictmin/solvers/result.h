@@ -61,6 +61,9 @@ struct IterationRecord {
   // Local-global with acceleration: accelerated steps accepted / rejected so far (-1: n/a).
   int accelerated_accepted = -1;
   int accelerated_rejected = -1;
+  // direct and exact: the level's solve's own iterations (interior-point iterations,
+  // local-global steps or frame iterations; -1: n/a).
+  int inner_iterations = -1;
   double time_s = 0;                        // since the solve started
 };
 
