@@ -25,7 +25,7 @@ struct GParamArgs {
   std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
-  bool edge_length_given = false, quads_given = false, parallel = false;
+  bool edge_length_given = false, quads_given = false, parallel = false, integer_grid = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start
@@ -55,6 +55,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
     throw InputError("--curvature-alignment must be a positive number, got " + shown_number(a.curvature_alignment));
   o.curvature_alignment = a.curvature_alignment;
   o.parallel_field = a.parallel;
+  o.integer_grid = a.integer_grid;
   if (!a.cones.empty()) {
     if (a.field != "smoothest") throw InputError("give --cones or --field " + a.field + ", not both");
     o.cones = read_cone_file(a.cones, mesh.num_vertices());
@@ -108,7 +109,9 @@ int run_gparam(const GParamArgs& a) {
     progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g)));
   progress(a.out, "gparam: max distortion " + std::to_string(g.measured.stats.max) + ", L2 " +
                       std::to_string(g.measured.stats.l2) + ", " + std::to_string(g.measured.stats.flipped) +
-                      " flipped, seam error " + shown_number(g.seam_error) + ", " + status_name(g.result.status));
+                      " flipped, seam error " + shown_number(g.seam_error) +
+                      (o.integer_grid ? ", integer-grid error " + shown_number(g.integer_error) : std::string()) + ", " +
+                      status_name(g.result.status));
   return exit_code_for(g.result.status);
 }
 
@@ -142,6 +145,9 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--edge-length", args->edge_length,
                   "Target edge length h: a surface length h maps to 1 in UV (> 0, within 1e-9 to 1e9 times the square "
                   "root of the surface's area)");
+  cmd->add_flag("--integer-grid", args->integer_grid,
+                "Round the singular vertices and the seam translations to the grid of the edge length first (greedy, "
+                "with L2 solves between the steps), so that the map's integer lines close up into a quad mesh");
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();

@@ -159,7 +159,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
                    const std::string& field_name, const std::optional<RowMatrixXd>& directions,
                    const std::optional<double>& edge_length, const std::optional<int>& quads,
                    double curvature_alignment, bool parallel, const std::optional<std::vector<int>>& cones,
-                   const py::dict& kwargs, const py::object& progress) {
+                   bool integer_grid, const py::dict& kwargs, const py::object& progress) {
   const auto t0 = Clock::now();
   TaskOptions o = parse_options(Task::GParam, "gparam", method, kwargs);
   GParamOptions options;
@@ -181,6 +181,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   options.curvature_field = field_name == "curvature";
   options.field_options.unit = field_name == "unit";
   options.parallel_field = parallel;
+  options.integer_grid = integer_grid;
   if (cones) {
     if (field_name != "smoothest") throw InputError("give cones or field, not both");
     options.cones = *cones;
@@ -285,7 +286,7 @@ void bind_tasks(py::module_& m) {
         py::arg("progress"));
   m.def("gparam", &gparam_py, py::arg("V"), py::arg("F"), py::arg("method"), py::arg("measure"), py::arg("field"),
         py::arg("directions"), py::arg("edge_length"), py::arg("quads"), py::arg("curvature_alignment"),
-        py::arg("parallel"), py::arg("cones"), py::arg("options"), py::arg("progress"));
+        py::arg("parallel"), py::arg("cones"), py::arg("integer_grid"), py::arg("options"), py::arg("progress"));
   m.def("interp", &interp_py, py::arg("V"), py::arg("F"), py::arg("V_target"), py::arg("t"), py::arg("method"),
         py::arg("options"), py::arg("progress"));
 }

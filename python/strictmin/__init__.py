@@ -265,7 +265,7 @@ def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, v
 
 
 def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=0.01,
-           parallel=False, cones=None, progress=None, verbose=False, **options):
+           parallel=False, cones=None, integer_grid=False, progress=None, verbose=False, **options):
     """Globally parametrize a closed manifold triangle surface (one component, any genus)
     guided by a cross field, with seams as linear constraints (the paper's Appendix A;
     docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
@@ -274,7 +274,9 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     parallel between them (the CLI's --parallel); cones: #V integers, each vertex's index in
     quarters (the field with exactly these cones, the CLI's --cones; instead of field);
     edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
-    squares (default 1000). Options: the command line's flags with underscores. Returns a
+    squares (default 1000); integer_grid: round the singular vertices and the seam
+    translations to that grid first (the CLI's --integer-grid; the Result then has
+    ``integer_error``, ``rounded_singularities``, ``off_grid_translations``, ...). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
     into uv), ``singularities`` [(vertex, index in quarters)], ``field`` (#F by 3, the field
     used), ``euler_characteristic``, ``edge_length``, ``seam_error``."""
@@ -305,6 +307,8 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     curvature_alignment = _real_number(curvature_alignment, "curvature_alignment")
     if not isinstance(parallel, bool):
         raise TypeError("parallel must be True or False")
+    if not isinstance(integer_grid, bool):
+        raise TypeError("integer_grid must be True or False")
     if cones is not None:
         cones = np.asarray(cones)
         if cones.dtype.kind not in "iu" or cones.ndim != 1:
@@ -314,7 +318,7 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
             raise ValueError("cones: an index is out of range")
         cones = [int(q) for q in cones]
     return Result(_strictmin.gparam(V, F, _text(method, "method"), _text(measure, "measure"), field, directions,
-                                    edge_length, quads, curvature_alignment, parallel, cones, options,
+                                    edge_length, quads, curvature_alignment, parallel, cones, integer_grid, options,
                                     _progress(progress, verbose)))
 
 

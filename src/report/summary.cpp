@@ -182,6 +182,17 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["cut_mesh_vertices"] = g.cut.num_wedges();
   s["edge_length"] = g.edge_length;
   s["seam_error"] = g.seam_error;
+  s["integer_grid"] = o.integer_grid;
+  if (o.integer_grid) {
+    s["integer_error"] = g.integer_error;
+    s["rounded_singularities"] = g.rounding.singularities;
+    s["rounded_translations"] = g.rounding.translations;
+    s["off_grid_singularities"] = g.rounding.singularities_off_grid;
+    s["off_grid_translations"] = g.rounding.translations_off_grid;
+    s["rounding_largest_move"] = g.rounding.largest_rounding;
+    s["rounding_solves"] = g.rounding.solves;
+    s["rounding_time_s"] = g.rounding.time_s;
+  }
   add_distortion_summary(s, g.measured.stats);
   add_status_summary(s, g.result);
   add_solver_summary(s, o.solver, g.result);

@@ -136,6 +136,21 @@ void solve(const GParamOptions& o, GParamOutcome& out) {
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
 }
 
+// The integer-grid map's own criterion: every value rounded. Values the rounding left to
+// the others off the grid (integer_grid.h) make the outcome stalled, whatever the method's.
+void note_values_off_the_grid(GParamOutcome& out) {
+  const int off = out.rounding.singularities_off_grid + out.rounding.translations_off_grid;
+  if (off == 0 || !out.result.usable()) return;
+  out.result.status = worse_status(out.result.status, SolveStatus::Stalled);
+  char why[400];
+  std::snprintf(why, sizeof why,
+                "integer grid: %d singular vertices and %d seam translations are fixed by the values rounded before "
+                "them off the grid (the greedy rounding does not keep the parity of the translations around a "
+                "handle's loops, docs/gparam.md); the map is seamless but %.3g grid units off an integer-grid map; ",
+                out.rounding.singularities_off_grid, out.rounding.translations_off_grid, out.integer_error);
+  out.result.message = why + out.result.message;
+}
+
 void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   const Eigen::MatrixXd& X = out.result.positions;
   out.measured = o.measure == Measure::FieldDeviation
@@ -145,6 +160,10 @@ void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
   out.mapped.UV = X / out.edge_length;
   out.mapped.FUV = out.cut.corner_wedge;
   branch_translations(mesh, out.graph, out.cut, out.mapped.UV, &out.seam_error);
+  if (o.integer_grid) {
+    out.integer_error = integer_grid_error(mesh, out.graph, out.cut, out.singular, out.edge_length, X);
+    note_values_off_the_grid(out);
+  }
   if (out.result.usable() && !out.mapped.UV.allFinite()) {  // a safety net: the scale check should prevent it
     out.result.status = SolveStatus::NumericalError;
     out.result.message = "the texture coordinates (the map / the edge length " + std::to_string(out.edge_length) +
@@ -168,6 +187,9 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   const double area = out.frames.area.sum();
   check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
+  if (o.integer_grid)
+    out.rounding = round_to_integer_grid(mesh, out.graph, out.cut, out.singular, out.edge_length, out.problem, o.progress);
+  check_interrupt();
   solve(o, out);
   measure(mesh, o, out);
   return out;

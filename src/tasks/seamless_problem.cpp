@@ -5,11 +5,6 @@
 namespace strictmin {
 namespace {
 
-int wedge_at(const Mesh& mesh, const CutGraph& c, int f, int v) {
-  for (int i = 0; i < 3; ++i)
-    if (mesh.F(f, i) == v) return c.corner_wedge(f, i);
-  return -1;
-}
 
 void add_targets(const CutGraph& c, Problem& p) {
   for (int f = 0; f < p.num_elements(); ++f) {
@@ -28,8 +23,8 @@ void add_transitions(const Mesh& mesh, const SurfaceGraph& g, const CutGraph& c,
   for (int e = 0; e < g.num_edges(); ++e) {
     if (!c.cut[e]) continue;
     const int a = g.edges(e, 0), b = g.edges(e, 1), f0 = g.edge_faces(e, 0), f1 = g.edge_faces(e, 1);
-    const int a0 = wedge_at(mesh, c, f0, a), b0 = wedge_at(mesh, c, f0, b);
-    const int a1 = wedge_at(mesh, c, f1, a), b1 = wedge_at(mesh, c, f1, b);
+    const int a0 = corner_wedge_of(mesh, c, f0, a), b0 = corner_wedge_of(mesh, c, f0, b);
+    const int a1 = corner_wedge_of(mesh, c, f1, a), b1 = corner_wedge_of(mesh, c, f1, b);
     const Eigen::Matrix2d R = quarter_rotation(c.matching[e]);
     for (int r = 0; r < 2; ++r) {
       t.emplace_back(rows, 2 * b0 + r, 1.0);
@@ -71,6 +66,22 @@ void add_copies(const SurfaceGraph& g, const CutGraph& c, Problem& p) {
 
 }  // namespace
 
+int corner_wedge_of(const Mesh& mesh, const CutGraph& c, int f, int v) {
+  for (int i = 0; i < 3; ++i)
+    if (mesh.F(f, i) == v) return c.corner_wedge(f, i);
+  return -1;
+}
+
+BranchEnds branch_ends(const Mesh& mesh, const SurfaceGraph& g, const CutGraph& c, const SeamBranch& b) {
+  BranchEnds ends;
+  const int e = b.edges[0], v = b.vertices[0];
+  const bool forward = g.edges(e, 0) == v;  // runs as in face 0
+  ends.left = corner_wedge_of(mesh, c, g.edge_faces(e, forward ? 0 : 1), v);
+  ends.right = corner_wedge_of(mesh, c, g.edge_faces(e, forward ? 1 : 0), v);
+  ends.rotation = quarter_rotation(b.quarter_turns);
+  return ends;
+}
+
 Problem seamless_problem(const Mesh& mesh, const SurfaceGraph& g, const CutGraph& c) {
   Problem p = make_problem(cut_mesh(mesh, c));
   add_targets(c, p);
@@ -94,7 +105,7 @@ Eigen::MatrixXd branch_translations(const Mesh& mesh, const SurfaceGraph& g, con
       const bool forward = g.edges(e, 0) == b.vertices[k];  // runs as in face 0
       const int left = g.edge_faces(e, forward ? 0 : 1), right = g.edge_faces(e, forward ? 1 : 0);
       for (int v : {b.vertices[k], b.vertices[k + 1]})
-        t.push_back(X.row(wedge_at(mesh, c, left, v)).transpose() - R * X.row(wedge_at(mesh, c, right, v)).transpose());
+        t.push_back(X.row(corner_wedge_of(mesh, c, left, v)).transpose() - R * X.row(corner_wedge_of(mesh, c, right, v)).transpose());
     }
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     for (const auto& x : t) mean += x;

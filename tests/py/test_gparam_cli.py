@@ -95,6 +95,43 @@ class GParam(unittest.TestCase):
         self.assertEqual(len(fs), s["elements"])
         self.assertTrue(all("/" in l for l in fs))
 
+    def test_integer_grid(self):
+        # The cube of side 2 at h = 0.5 with its edge-aligned field (a field file: x, or y on the
+        # faces normal to x; the smoothest field may come out at any global angle, and then the
+        # corners are not a whole number of grid units apart): its corners are 4 grid units apart,
+        # so the rounded map keeps distortion 0, with every corner and seam translation on the grid.
+        lines, _ = cube_obj()
+        verts = [[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")]
+        field = []
+        for l in lines:
+            if l.startswith("f "):
+                corners = [verts[int(i) - 1] for i in l.split()[1:]]
+                normal_x = all(abs(c[0] - corners[0][0]) < 1e-12 for c in corners)
+                field.append("0 1 0" if normal_x else "1 0 0")
+        field_file = self.write("edges.txt", "\n".join(field) + "\n")
+        out = self.out("grid.obj")
+        for method in ("l2", "linf", "relax"):
+            s = self.gparam(self.cube, "-o", out, "--method", method, "--edge-length", "0.5", "--integer-grid",
+                            "--field", field_file)
+            self.assertTrue(s["integer_grid"])
+            self.assertLess(s["integer_error"], 1e-9, method)
+            self.assertIn(s["rounded_singularities"], (7, 8))  # wedge 0 may be a corner, on the grid already
+            self.assertEqual(s["rounded_translations"], s["seam_branches"])
+            self.assertLess(s["max_distortion"], 1e-6, method)
+            self.assertEqual(s["status"], "solved")
+        with open(out) as f:
+            uv = [[float(x) for x in l.split()[1:3]] for l in f if l.startswith("vt ")]
+        corners = [p for p in uv if abs(p[0] - round(p[0])) < 1e-9 and abs(p[1] - round(p[1])) < 1e-9]
+        self.assertGreaterEqual(len(corners), 8)
+        # At h = 0.8 the corners, 2.5 grid units apart, cannot all be integer points: distortion.
+        s = self.gparam(self.cube, "-o", out, "--method", "linf", "--edge-length", "0.8", "--integer-grid",
+                        "--field", field_file)
+        self.assertGreater(s["lower_bound"], 1e-2)
+        self.assertLess(s["integer_error"], 1e-9)
+        s = self.gparam(self.cube, "-o", out, "--edge-length", "0.8")
+        self.assertFalse(s["integer_grid"])
+        self.assertNotIn("integer_error", s)
+
     def test_field_round_trip(self):
         field = self.out("field.txt")
         a = self.gparam(self.cube, "--field-out", field)

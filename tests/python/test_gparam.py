@@ -143,3 +143,18 @@ def test_bad_input(closed):
         strictmin.gparam(V, F, pin=0)
     with pytest.raises(TypeError):
         strictmin.gparam(V, F, quads=1.5)
+
+
+def test_integer_grid_matches_cli(tmp_path, closed):
+    # The ellipsoid is of genus 0: every singular vertex and seam translation is rounded, the
+    # map is on the grid to round-off, and the module gives the command line's map.
+    mesh, V, F = closed
+    summary, dist = cli_run(tmp_path, ["gparam", mesh, "--method", "linf", "--quads", 60, "--integer-grid"])
+    r = strictmin.gparam(V, F, method="linf", quads=60, integer_grid=True)
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.summary["integer_grid"] is True and r.summary["integer_error"] < 1e-9
+    assert r.summary["off_grid_translations"] == 0 and r.summary["off_grid_singularities"] == 0
+    assert r.summary["rounded_singularities"] >= len(r.singularities) - 1
+    with pytest.raises(TypeError, match="integer_grid must be True or False"):
+        strictmin.gparam(V, F, integer_grid=1)

@@ -9,7 +9,7 @@ import pytest
 import strictmin
 from conftest import grid, read_numbers, run_cli, saddle, square_handles, tet_bar
 
-VARYING = {"time_s", "solver_time_s", "init_time_s", "graph_time_s", "field_time_s", "cut_time_s", "input", "output", "distortion_file",
+VARYING = {"time_s", "solver_time_s", "init_time_s", "graph_time_s", "field_time_s", "cut_time_s", "rounding_time_s", "input", "output", "distortion_file",
            "source", "target"}
 
 

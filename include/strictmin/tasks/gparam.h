@@ -18,6 +18,7 @@
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/local_global.h"
 #include "strictmin/solvers/result.h"
+#include "strictmin/tasks/integer_grid.h"
 #include "strictmin/tasks/map_distortion.h"
 #include "strictmin/tasks/method.h"
 
@@ -39,6 +40,9 @@ struct GParamOptions {
   // exactly those cones (cone_cross_field): smoother, and a lower maximum distortion
   // (docs/gparam.md, "Fields from cones"). Implied by `cones`.
   bool parallel_field = false;
+  // --integer-grid: the singular vertices and the seam translations rounded to the grid of
+  // the edge length before the method's solve (tasks/integer_grid.h).
+  bool integer_grid = false;
   CrossFieldOptions field_options;
   SolverOptions solver;
   LocalGlobalOptions local_global;
@@ -75,6 +79,8 @@ struct GParamOutcome {
   Mesh mapped;                // input V and F, UV = result / h, FUV = corner wedges
   MapDistortion measured;     // fd against the field's frames, or arap (dimensionless)
   double seam_error = 0;      // largest transition violation, in UV units
+  IntegerGridRounding rounding;  // integer_grid: what was rounded
+  double integer_error = 0;      // integer_grid: the map's distance to the grid (integer_grid_error)
   double graph_time_s = 0;  // the surface graph (edges, fans) and the manifold checks
   double field_time_s = 0, cut_time_s = 0, solve_time_s = 0;
 };

@@ -20,6 +20,17 @@ namespace strictmin {
 
 Problem seamless_problem(const Mesh& mesh, const SurfaceGraph& graph, const CutGraph& cut);
 
+// The wedge (cut-mesh vertex) of vertex v's corner in face f, -1 when v is not a corner of f.
+int corner_wedge_of(const Mesh& mesh, const CutGraph& cut, int f, int v);
+
+// The two wedges of a branch's first vertex on its left and right sides, and its rotation:
+// the branch's translation is t = X(left) - R X(right) (branch_translations' convention).
+struct BranchEnds {
+  int left = -1, right = -1;
+  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity();
+};
+BranchEnds branch_ends(const Mesh& mesh, const SurfaceGraph& graph, const CutGraph& cut, const SeamBranch& branch);
+
 // Each branch's translation t = mean over its vertices of uv_left - R uv_right (#branches by
 // 2), and the largest |uv_left - R uv_right - t| over every branch vertex (the transitions'
 // violation) in *error. X: #wedges by 2.
