@@ -144,9 +144,9 @@ void note_values_off_the_grid(GParamOutcome& out) {
   out.result.status = worse_status(out.result.status, SolveStatus::Stalled);
   char why[400];
   std::snprintf(why, sizeof why,
-                "integer grid: %d singular vertices and %d seam translations are fixed by the values rounded before "
-                "them off the grid (the greedy rounding does not keep the parity of the translations around a "
-                "handle's loops, docs/gparam.md); the map is seamless but %.3g grid units off an integer-grid map; ",
+                "integer grid: %d singular vertices and %d seam translations could not be rounded (every try "
+                "fixed a value off the grid: the parity of a handle's loops, docs/gparam.md, \"Integer-grid "
+                "maps\"); the map is seamless but %.3g grid units off an integer-grid map; ",
                 out.rounding.singularities_off_grid, out.rounding.translations_off_grid, out.integer_error);
   out.result.message = why + out.result.message;
 }

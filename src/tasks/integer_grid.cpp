@@ -19,6 +19,21 @@ namespace {
 // Each rounding step takes this share of the values left (at least one), nearest first.
 constexpr double kStepShare = 0.25;
 
+// A value is fixed by the equalities when perturbed targets move it by at most kDetermined
+// (relative), and on the grid within kOnTheGrid grid units.
+constexpr double kDetermined = 1e-9;
+constexpr double kOnTheGrid = 1e-6;
+
+// The problem with every target moved by a fixed pseudo-random amount (0.3 at most): the
+// values its L2 map shares with the problem's are those its equalities fix.
+Problem with_perturbed_targets(const Problem& p) {
+  Problem q = p;
+  for (Eigen::Index r = 0; r < q.targets.rows(); ++r)
+    for (Eigen::Index c = 0; c < q.targets.cols(); ++c)
+      q.targets(r, c) += 0.3 * std::sin(12.9898 * static_cast<double>(r * q.targets.cols() + c) + 1.0);
+  return q;
+}
+
 // The distance of v (UV units) to the nearest integer point, per coordinate.
 double grid_distance(const Eigen::Vector2d& v) {
   return std::max(std::abs(v.x() - std::round(v.x())), std::abs(v.y() - std::round(v.y())));
@@ -54,41 +69,98 @@ void add_translation_rows(Problem& p, const BranchEnds& ends, const Eigen::Vecto
   p.eq_rhs.segment<2>(first) = t;
 }
 
+// The values being rounded: the singular vertices' held wedges, then the branch translations
+// (UV units), and which are on the grid already.
+struct GridValues {
+  std::vector<int> wedges;       // per singular vertex: its held wedge
+  std::vector<BranchEnds> ends;  // per branch
+  std::vector<char> held, rounded;
+  double h = 1;
+
+  Eigen::Vector2d singular(int i, const Eigen::MatrixXd& X) const { return X.row(wedges[i]).transpose() / h; }
+  Eigen::Vector2d translation(int i, const Eigen::MatrixXd& X) const {
+    const BranchEnds& e = ends[i];
+    return (X.row(e.left).transpose() - e.rotation * X.row(e.right).transpose()) / h;
+  }
+  // Whether some value not rounded yet is fixed by the equalities (the same on the map X and
+  // on the map Y of perturbed targets) off the grid: a rounding that made it so is a dead end.
+  bool fixes_a_value_off_the_grid(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) const {
+    auto off = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
+      return (x - y).cwiseAbs().maxCoeff() <= kDetermined * std::max(1.0, x.cwiseAbs().maxCoeff()) &&
+             grid_distance(x) > kOnTheGrid;
+    };
+    for (size_t i = 0; i < wedges.size(); ++i)
+      if (!held[i] && off(singular(static_cast<int>(i), X), singular(static_cast<int>(i), Y))) return true;
+    for (size_t i = 0; i < ends.size(); ++i)
+      if (!rounded[i] && off(translation(static_cast<int>(i), X), translation(static_cast<int>(i), Y))) return true;
+    return false;
+  }
+};
+
+// The grid points around v, nearest first: the nearest, then the other three corners of the
+// unit cell around v (a value rounded alone tries them before it is given up).
+std::vector<Eigen::Vector2d> grid_points_around(const Eigen::Vector2d& v) {
+  const Eigen::Vector2d low(std::floor(v.x()), std::floor(v.y()));
+  std::vector<Eigen::Vector2d> points;
+  for (int dx = 0; dx < 2; ++dx)
+    for (int dy = 0; dy < 2; ++dy) points.push_back(low + Eigen::Vector2d(dx, dy));
+  std::stable_sort(points.begin(), points.end(), [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - v).squaredNorm() < (b - v).squaredNorm();
+  });
+  return points;
+}
+
 // The greedy loop over one kind of value: `value(i, X)` (UV units) of the pending items,
 // `hold(i, point)` rounds item i to the grid point in `problem`, and `solve` returns the L2
-// map, or nothing when the equalities contradict each other. A step rounds the nearest
+// map after the step, or nothing when the step is a dead end (its equalities contradict each
+// other, or they fix a value not rounded yet off the grid). A step rounds the nearest
 // kStepShare of the values left, the `first` ones before any other; values rounded together
 // can contradict (three free translations around one node, 0.4 + 0.4 - 0.8 = 0, round to
-// 0 + 0 - 1), so a step that fails is undone and tried again with half as many. A single
-// value that still contradicts is fixed by the others off the grid (a loop's parity, see the
-// header): it is left to them and returned.
-template <class Value, class Hold, class Solve, class First>
+// 0 + 0 - 1), so a step that fails is undone and tried again with half as many; a value
+// alone tries the four grid points around it. One that still fails is left to the others
+// off the grid, and returned.
+template <class Value, class Hold, class Solve, class First, class Done>
 std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eigen::MatrixXd& X, Value value, Hold hold,
-                                Solve solve, First first, double& largest_rounding) {
+                                Solve solve, First first, Done done, double& largest_rounding) {
   std::vector<int> off_grid;
   while (!pending.empty()) {
     std::vector<std::tuple<bool, double, int>> order;
     for (int i : pending) order.emplace_back(!first(i), grid_distance(value(i, X)), i);
     std::sort(order.begin(), order.end());
     size_t take = std::max<size_t>(1, static_cast<size_t>(std::ceil(kStepShare * order.size())));
-    for (;; take = (take + 1) / 2) {
-      const Problem before = problem;
-      for (size_t j = 0; j < take; ++j) hold(std::get<2>(order[j]), nearest_grid_point(value(std::get<2>(order[j]), X)));
-      if (std::optional<Eigen::MatrixXd> next = solve()) {
-        X = std::move(*next);
-        break;
+    bool placed = false;
+    while (!placed) {
+      std::vector<std::vector<Eigen::Vector2d>> choices(1);
+      if (take == 1) choices = {grid_points_around(value(std::get<2>(order[0]), X))};
+      const size_t tries = take == 1 ? choices[0].size() : 1;
+      for (size_t t = 0; t < tries && !placed; ++t) {
+        const Problem before = problem;
+        for (size_t j = 0; j < take; ++j) {
+          const int i = std::get<2>(order[j]);
+          hold(i, take == 1 ? choices[0][t] : nearest_grid_point(value(i, X)));
+          done(i, true);
+        }
+        if (std::optional<Eigen::MatrixXd> next = solve()) {
+          X = std::move(*next);
+          placed = true;
+          break;
+        }
+        problem = before;
+        for (size_t j = 0; j < take; ++j) done(std::get<2>(order[j]), false);
       }
-      problem = before;
+      if (placed) break;
       if (take == 1) {
         off_grid.push_back(std::get<2>(order[0]));
+        done(std::get<2>(order[0]), true);  // left to the others: not rounded again
         break;
       }
+      take = (take + 1) / 2;
     }
     pending.clear();
     for (size_t j = 0; j < order.size(); ++j)
       if (j >= take)
         pending.push_back(std::get<2>(order[j]));
-      else if (off_grid.empty() || off_grid.back() != std::get<2>(order[j]))
+      else if (placed)
         largest_rounding = std::max(largest_rounding, std::get<1>(order[j]));
   }
   return off_grid;
@@ -101,67 +173,76 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
                                           const std::function<void(const std::string&)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   IntegerGridRounding out;
+  GridValues values;
+  values.h = h;
+  values.wedges = singular_wedges(graph, cut, singular);
+  for (const SeamBranch& b : cut.branches) values.ends.push_back(branch_ends(mesh, graph, cut, b));
+  values.held.assign(values.wedges.size(), 0);
+  values.rounded.assign(values.ends.size(), 0);
+  // With handles (genus >= 1) a rounding can fix a later value off the grid (the header): each
+  // step is then also solved with perturbed targets, and a value not rounded yet that is the
+  // same on both maps is fixed by the equalities, which must be on the grid.
+  const bool look_ahead = graph.euler_characteristic() < 2;
   std::string step = "before rounding";
-  // The L2 map, or nothing after a contradiction that a smaller step may avoid (`last`: it
-  // cannot, and the contradiction is an error like any other failure).
-  auto solve = [&]() -> std::optional<Eigen::MatrixXd> {
-    const Result r = solve_l2(problem);
+  auto l2 = [&](const Problem& p) -> std::optional<Eigen::MatrixXd> {
+    const Result r = solve_l2(p);
     ++out.solves;
     if (r.ok()) return r.positions;
-    if (r.status == SolveStatus::Infeasible) {
-      ++out.retried_steps;
-      return std::nullopt;
-    }
+    if (r.status == SolveStatus::Infeasible) return std::nullopt;
     throw InputError("integer-grid rounding: the L2 map " + step + " failed (" + status_name(r.status) + "): " +
                      r.message);
   };
-  std::optional<Eigen::MatrixXd> start = solve();
+  auto solve = [&]() -> std::optional<Eigen::MatrixXd> {
+    std::optional<Eigen::MatrixXd> X = l2(problem);
+    if (X && look_ahead) {
+      const std::optional<Eigen::MatrixXd> Y = l2(with_perturbed_targets(problem));
+      if (!Y || values.fixes_a_value_off_the_grid(*X, *Y)) X.reset();
+    }
+    if (!X) ++out.retried_steps;
+    return X;
+  };
+  std::optional<Eigen::MatrixXd> start = l2(problem);
   if (!start) throw InputError("integer-grid rounding: the seamless problem's L2 map failed before rounding");
   Eigen::MatrixXd X = std::move(*start);
 
   // 1. The singular vertices. The seamless problem holds wedge 0 at the origin only to fix
   // the map's translation: the grid takes that role once a singular vertex is held (in the
   // first step), so wedge 0 is let go (unless it is a singular vertex's: on the grid already).
-  const std::vector<int> wedges = singular_wedges(graph, cut, singular);
   std::vector<int> pending;
-  for (size_t i = 0; i < wedges.size(); ++i)
-    if (!problem.fixed[wedges[i]]) pending.push_back(static_cast<int>(i));
-  if (!pending.empty() && pending.size() == wedges.size())
+  for (size_t i = 0; i < values.wedges.size(); ++i) {
+    values.held[i] = problem.fixed[values.wedges[i]];
+    if (!values.held[i]) pending.push_back(static_cast<int>(i));
+  }
+  if (!pending.empty() && pending.size() == values.wedges.size())
     for (int w = 0; w < problem.num_vertices; ++w) problem.fixed[w] = 0;
   out.singularities = static_cast<int>(pending.size());
   step = "with the singular vertices rounded";
   const std::vector<int> off_grid_singular = round_greedily(
-      pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) -> Eigen::Vector2d { return Y.row(wedges[i]).transpose() / h; },
-      [&](int i, const Eigen::Vector2d& point) { problem.fix({Handle{wedges[i], h * point}}); }, solve,
-      [](int) { return false; }, out.largest_rounding);
+      pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
+      [&](int i, const Eigen::Vector2d& point) { problem.fix({Handle{values.wedges[i], h * point}}); }, solve,
+      [](int) { return false; }, [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
   out.singularities_off_grid = static_cast<int>(off_grid_singular.size());
+  for (int i : off_grid_singular) problem.fixed[values.wedges[i]] = 0;
 
-  // 2. The branch translations.
-  std::vector<BranchEnds> ends;
-  for (const SeamBranch& b : cut.branches) ends.push_back(branch_ends(mesh, graph, cut, b));
+  // 2. The branch translations. A branch from a node back to itself (a loop of the cut) enters
+  // its node's relation twice, with a coefficient such as I - R (determinant 2): loops go
+  // first, while the other branches at their nodes can still take up their parity.
   pending.clear();
-  for (size_t i = 0; i < ends.size(); ++i) pending.push_back(static_cast<int>(i));
+  for (size_t i = 0; i < values.ends.size(); ++i) pending.push_back(static_cast<int>(i));
   out.translations = static_cast<int>(pending.size());
   step = "with the seam translations rounded";
-  auto translation = [&](int i, const Eigen::MatrixXd& Y) -> Eigen::Vector2d {
-    const BranchEnds& e = ends[i];
-    return (Y.row(e.left).transpose() - e.rotation * Y.row(e.right).transpose()) / h;
-  };
-  // A branch from a node back to itself (a loop of the cut, on surfaces of genus >= 1) enters
-  // its node's relation twice, with a coefficient such as I - R (determinant 2): left last, it
-  // could be fixed at a half-integer. Loops go first.
   auto is_loop = [&](int i) { return cut.branches[i].vertices.front() == cut.branches[i].vertices.back(); };
   const std::vector<int> off_grid_translations = round_greedily(
-      pending, problem, X, translation,
-      [&](int i, const Eigen::Vector2d& point) { add_translation_rows(problem, ends[i], h * point); }, solve, is_loop,
-      out.largest_rounding);
+      pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
+      [&](int i, const Eigen::Vector2d& point) { add_translation_rows(problem, values.ends[i], h * point); }, solve,
+      is_loop, [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
   out.translations_off_grid = static_cast<int>(off_grid_translations.size());
   out.time_s = seconds_since(t0);
   if (progress) {
-    char line[240];
+    char line[260];
     std::snprintf(line, sizeof line,
                   "integer grid: %d singular vertices and %d seam translations rounded (largest move %.3g grid "
-                  "units; %d and %d left off the grid), %d L2 solves (%d steps halved), %.3f s",
+                  "units; %d and %d left off the grid), %d L2 solves (%d steps tried again), %.3f s",
                   out.singularities - out.singularities_off_grid, out.translations - out.translations_off_grid,
                   out.largest_rounding, out.singularities_off_grid, out.translations_off_grid, out.solves,
                   out.retried_steps, out.time_s);

@@ -19,9 +19,14 @@
 // regular vertex where branches meet, sum R_i t_i = 0; around a singular vertex,
 // (I - prod R) f = sum R_i t_i) has integer coefficients, so once the singular vertices are
 // integer, a translation that the others determine is an integer combination of integers,
-// and its rows are redundant, not contradictory: rounded one at a time, the values never
-// contradict. Rounded together they can (0.4 + 0.4 - 0.8 = 0 rounds to 0 + 0 - 1), which the
-// L2 solve finds; the step is then halved.
+// and its rows are redundant, not contradictory. Rounded together they can contradict
+// (0.4 + 0.4 - 0.8 = 0 rounds to 0 + 0 - 1), which the L2 solve finds; the step is then
+// halved. With handles (genus >= 1) the translations around a loop of the cut enter their
+// relations with coefficients such as I - R (determinant 2), and earlier roundings can fix a
+// later translation at a half-integer: there each step also solves with perturbed targets,
+// and a step that fixes a value not rounded yet off the grid is tried again (halved, then a
+// value alone at the four grid points around it). A value every try fails for is left to
+// the others, off the grid (counted below).
 #include <functional>
 #include <string>
 #include <vector>
