@@ -60,7 +60,13 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                    std::to_string(mesh.num_elements()) + " triangles, Euler characteristic " +
                    std::to_string(g.graph.euler_characteristic()) + ", " + std::to_string(g.singular.size()) +
                    " singularities (white dots: positive index, black dots: negative), " + std::to_string(g.cut.num_cut_edges) +
-                   " seam edges (dark red), seam error " + shown_number(g.seam_error, 2) + ".";
+                   " seam edges (dark red), seam error " + shown_number(g.seam_error, 2) + "." +
+                   (summary.value("integer_grid", false)
+                        ? " Integer-grid map: singular vertices and seam translations rounded to the grid (" +
+                              std::to_string(g.rounding.singularities - g.rounding.singularities_off_grid) + " and " +
+                              std::to_string(g.rounding.translations - g.rounding.translations_off_grid) +
+                              "), off it by at most " + shown_number(g.integer_error, 2) + " grid units."
+                        : std::string());
   describe_measure(in, summary.value("measure", std::string("fd")));
   in.rest = &mesh;
   run.view_name = "view";

@@ -123,6 +123,11 @@ class GParam(unittest.TestCase):
             uv = [[float(x) for x in l.split()[1:3]] for l in f if l.startswith("vt ")]
         corners = [p for p in uv if abs(p[0] - round(p[0])) < 1e-9 and abs(p[1] - round(p[1])) < 1e-9]
         self.assertGreaterEqual(len(corners), 8)
+        report = self.out("grid_report")
+        run("gparam", self.cube, "-o", out, "--edge-length", "0.5", "--integer-grid", "--field", field_file,
+            "--report", report, "--quiet", check_code=0)
+        with open(os.path.join(report, "index.html")) as f:
+            self.assertIn("Integer-grid map: singular vertices and seam translations rounded to the grid", f.read())
         # At h = 0.8 the corners, 2.5 grid units apart, cannot all be integer points: distortion.
         s = self.gparam(self.cube, "-o", out, "--method", "linf", "--edge-length", "0.8", "--integer-grid",
                         "--field", field_file)
