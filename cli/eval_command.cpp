@@ -40,7 +40,7 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
   in.description = "Task eval, " + summary.value("map_kind", std::string("deformation")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
                    " elements, " + flipped_phrase(d.stats.flipped) + ".";
-  describe_measure(in, summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")), "eval");
   in.rest = &rest;
   MethodRun run;
   run.method = "given";

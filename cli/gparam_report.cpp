@@ -61,7 +61,7 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                    std::to_string(g.graph.euler_characteristic()) + ", " + std::to_string(g.singular.size()) +
                    " singularities (white dots: positive index, black dots: negative), " + std::to_string(g.cut.num_cut_edges) +
                    " seam edges (dark red), seam error " + shown_number(g.seam_error, 2) + ".";
-  describe_measure(in, summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")), "gparam");
   in.rest = &mesh;
   run.view_name = "view";
   run.links.emplace_back("surface with seams and singularities", pictures[0]);

@@ -36,7 +36,7 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
                    summary.value("init", std::string("tutte")) + ", " + std::to_string(mesh.num_elements()) +
                    " triangles, " + std::to_string(p.flips) + " flipped, boundary " +
                    (p.boundary_overlap ? "overlaps itself." : "does not overlap.");
-  describe_measure(in, summary.value("measure", std::string("arap")));
+  describe_measure(in, summary.value("measure", std::string("arap")), "param");
   in.rest = &mesh;
   MethodRun run = method_run(method, p, *parse_measure(summary.value("measure", std::string("arap"))));
   run.view_name = "view";

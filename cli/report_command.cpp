@@ -387,7 +387,7 @@ int run_report(ReportCommandArgs a) {
       all_solved = all_solved && r.run.status == "solved";
       in.runs.push_back(r.run);
     }
-    describe_measure(in, measure);
+    describe_measure(in, measure, first.summary.value("task", std::string("deform")));
     in.description = std::to_string(in.runs.size()) + " result" + (in.runs.size() == 1 ? "" : "s") + " for input " +
                      (input.empty() ? std::string("(unknown)") : input) + ".";
     report.sections.push_back(write_section(a.dir, in, options));

@@ -112,6 +112,15 @@ class Param(unittest.TestCase):
         self.assertTrue(os.path.exists(os.path.join(rep, "index.html")))
         self.assertTrue(os.path.exists(os.path.join(rep, "summary.json")))
 
+    def test_fd_report_names_the_starting_maps_rotations(self):
+        """param's fd is ||J - R|| against the starting map's rotations: its report said ||J - I||."""
+        rep = os.path.join(self.dir, "rep_fd")
+        run("param", self.cap, "--measure", "fd", "--method", "l2", "--report", rep, "--quiet", check_code=0)
+        with open(os.path.join(rep, "index.html"), encoding="utf-8") as f:
+            html = f.read().replace("&#39;", "'")
+        self.assertNotIn("\u2016J \u2212 I\u2016", html)
+        self.assertIn("\u2016J \u2212 R\u2016 from the starting map's rotations", html)
+
 
 if __name__ == "__main__":
     if not os.path.exists(CLI) and "/" in CLI:
