@@ -22,6 +22,7 @@
 #include "local_targets.h"
 #include "relax_sweep.h"
 #include "option_check.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 namespace {
@@ -301,7 +302,7 @@ bool LocalGlobalOptions::is_valid(std::string* why) const {
             "acceleration_window must be in [0, 50] (got " + std::to_string(acceleration_window) + ")")
       .that(!std::isnan(relative_change), "relative_change must be a number (got nan)")
       .that(target_extrapolation >= 0 && target_extrapolation <= 1,
-            "target_extrapolation must be in [0, 1] (got " + std::to_string(target_extrapolation) + ")")
+            "target_extrapolation must be in [0, 1] (got " + io_detail::number_text(target_extrapolation) + ")")
       .ok();
 }
 

@@ -12,6 +12,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 namespace {
@@ -20,7 +21,7 @@ void check_options(const GParamOptions& o) {
   if (o.measure != Measure::FieldDeviation && o.measure != Measure::Arap)
     throw InputError("gparam minimizes fd or arap; '" + measure_name(o.measure) + "' is not available");
   if (!(o.edge_length > 0) && o.edge_length != 0)
-    throw InputError("--edge-length must be a positive number, got " + std::to_string(o.edge_length));
+    throw InputError("--edge-length must be a positive number, got " + io_detail::number_text(o.edge_length));
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
