@@ -125,6 +125,9 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   ParamOptions options;
   options.measure = measure_of(measure);
   // init names the starting map (tutte, lscm); a method name there is relax's start.
+  if ((method == "tutte" || method == "lscm") && (o.init == "tutte" || o.init == "lscm") && o.init != method)
+    throw InputError("init='" + o.init + "' contradicts method='" + method + "': that method is the " + method +
+                     " starting map itself (give method='" + o.init + "', or init='" + method + "')");
   if (o.init == "lscm") options.init = ParamInit::Lscm;
   if (method == "tutte" || method == "lscm") {
     options.init = method == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;

@@ -153,6 +153,19 @@ def test_small_bad_values_are_quoted_as_given(square):
         strictmin.gparam(V, F, field="curvature", curvature_alignment=-1e-12)
 
 
+def test_param_init_contradicting_the_start_method(square):
+    """method="tutte" is Tutte's map itself: init="lscm" beside it was silently dropped."""
+    V, F, _, _ = square
+    surface = np.column_stack([V, 0.1 * V[:, 0] * V[:, 1]])
+    with pytest.raises(ValueError, match="init='lscm' contradicts method='tutte'"):
+        strictmin.param(surface, F, method="tutte", init="lscm")
+    with pytest.raises(ValueError, match="init='tutte' contradicts method='lscm'"):
+        strictmin.param(surface, F, method="lscm", init="tutte")
+    assert strictmin.param(surface, F, method="lscm").summary["init"] == "lscm"
+    assert strictmin.param(surface, F, method="tutte", init="tutte").summary["init"] == "tutte"
+    assert strictmin.param(surface, F, method="l2").summary["init"] == "tutte"
+
+
 def test_tasks(square):
     V, F, idx, pos = square
     surface = np.column_stack([V, V[:, 0] * V[:, 1]])
