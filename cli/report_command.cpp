@@ -17,6 +17,8 @@
 
 #include "commands.h"
 #include "common.h"
+#include "demo_gparam.h"
+#include "demo_param.h"
 #include "report_output.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
@@ -185,6 +187,19 @@ struct LoadedRun {
   std::vector<Handle> handles;
 };
 
+// The rest mesh and handles of "example:NAME": deform's examples, and the surfaces of demo's
+// param and gparam sections, whose summaries say "example:spherical-cap" and
+// "example:bulged-frame".
+void load_example_rest(const std::string& name, LoadedRun& r) {
+  if (name == "spherical-cap" || name == "bulged-frame") {
+    r.rest = std::make_shared<Mesh>(name == "spherical-cap" ? demo_spherical_cap() : demo_bulged_frame());
+    return;
+  }
+  Example ex = make_example(name);
+  r.rest = std::make_shared<Mesh>(std::move(ex.mesh));
+  r.handles = std::move(ex.handles);
+}
+
 LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   std::ifstream in(file);
   if (!in) throw InputError("cannot read " + file + ": " + std::strerror(errno));
@@ -214,9 +229,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
     throw InputError(file + ": the summary names no output mesh (run the task with -o OUT.obj, or .mesh for tets)");
   // The rest mesh: a built-in example, or the input file.
   if (r.input.rfind("example:", 0) == 0) {
-    Example ex = make_example(r.input.substr(8));
-    r.rest = std::make_shared<Mesh>(std::move(ex.mesh));
-    r.handles = std::move(ex.handles);
+    load_example_rest(r.input.substr(8), r);
   } else if (!r.input.empty() && fs::exists(resolve(r.input, file))) {
     r.rest = std::make_shared<Mesh>(read_mesh(resolve(r.input, file)));
   }
