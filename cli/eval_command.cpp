@@ -96,6 +96,7 @@ int run_eval(const EvalArgs& a) {
   s["method"] = "given";
   s["input"] = a.rest;
   s["map"] = a.mapped.empty() ? a.rest : a.mapped;
+  s["output"] = a.output;  // the -o mesh with its per-element distortion, as every task's summary says it
   s["map_kind"] = parametrization ? "parametrization" : "deformation";
   s["measure"] = measure_name(*measure);
   s["elements"] = rest.num_elements();
