@@ -328,7 +328,8 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   for (int v = 0; v < p.num_vertices; ++v)
     if (p.fixed[v]) out.positions.row(v) = p.positions.row(v);
   if (solver.method == Method::Exact)
-    throw InputError("the exact strict minimizer is for field deviation only; use direct or relax with ARAP/ASAP");
+    throw InputError("--method exact (the exact strict minimizer) is for --measure fd only; under arap or asap use "
+                     "--method direct or relax");
   // No new flips: first without the constraint; when that map adds no flip it is the answer
   // (and the better one: the cut-back steps can stall where a step must pass through a flip
   // to get around, dragon from Tutte: 19.3 instead of 0.98). Otherwise run again with every
