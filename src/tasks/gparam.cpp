@@ -122,26 +122,67 @@ void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
 }
 
 
-void solve(const GParamOptions& o, GParamOutcome& out) {
+// The seamless problem of the surface scaled to unit area. The problem is homogeneous (the
+// seams' right-hand sides are 0, wedge 0 sits at the origin), so its solution times the
+// scale is the surface's own: solving it there keeps the solvers' numbers of order 1 whatever
+// the file's units (a torus in units of 1e-8, coordinates about 1e8, ended numerical-error
+// under linf where the same torus at 1 was solved).
+struct UnitArea {
+  Mesh mesh;          // the surface scaled to unit area
+  Problem problem;    // its seamless problem
+  double scale = 1;   // sqrt(area): the surface's lengths are the unit problem's times this
+};
+
+UnitArea unit_area_problem(const Mesh& mesh, const GParamOutcome& out) {
+  UnitArea unit;
+  unit.scale = std::sqrt(out.frames.area.sum());
+  unit.mesh = mesh;
+  unit.mesh.V /= unit.scale;
+  unit.problem = seamless_problem(unit.mesh, out.graph, out.cut);
+  return unit;
+}
+
+// The map and the lengths of a solve on the unit-area problem, in surface units.
+void scale_lengths(Result& r, double scale) {
+  r.positions *= scale;
+  for (IterationRecord& record : r.history) record.largest_move *= scale;
+}
+
+Result solve_unit_area(const GParamOptions& o, const UnitArea& unit) {
+  const Problem& problem = unit.problem;
+  SolverOptions solver = o.solver;
+  solver.relax.move_tolerance /= unit.scale;  // a length: surface units
+  if (o.measure == Measure::FieldDeviation) return run_method(problem, solver);
+  LocalGlobalOptions lg = o.local_global;
+  lg.local = LocalStep::Rotation;
+  const Result start = solve_l2(problem);  // the field-guided map starts local-global
+  return start.ok() ? local_global(problem, start.positions, solver, lg) : start;
+}
+
+void solve(const GParamOptions& o, const UnitArea& unit, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   say(o, "solve: " + method_name(o.solver.method) + ", measure " + measure_name(o.measure));
-  if (o.measure == Measure::FieldDeviation) {
-    out.result = run_method(out.problem, o.solver);
-  } else {
-    LocalGlobalOptions lg = o.local_global;
-    lg.local = LocalStep::Rotation;
-    const Result start = solve_l2(out.problem);  // the field-guided map starts local-global
-    out.result = start.ok() ? local_global(out.problem, start.positions, o.solver, lg) : start;
-  }
+  out.result = solve_unit_area(o, unit);
+  scale_lengths(out.result, unit.scale);
   out.solve_time_s = seconds_since(t0);
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
 }
 
-void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+// fd against the field's frames or ARAP, measured on the unit-area surface (a uniform scale
+// of the surface and the map leaves every Jacobian as it is), weighted by the surface's areas.
+MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitArea& unit, const CutGraph& cut,
+                                          const Eigen::MatrixXd& X) {
+  const Eigen::MatrixXd unit_map = X / unit.scale;
+  MapDistortion d = o.measure == Measure::FieldDeviation
+                        ? frame_distortion(unit.problem, unit_map)
+                        : map_distortion(unit.mesh, corner_images(cut.corner_wedge, unit_map), Measure::Arap);
+  d.weights *= unit.scale * unit.scale;
+  return d;
+}
+
+void measure(const Mesh& mesh, const GParamOptions& o, const UnitArea& unit, GParamOutcome& out) {
   const Eigen::MatrixXd& X = out.result.positions;
-  out.measured = o.measure == Measure::FieldDeviation
-                     ? frame_distortion(out.problem, X)
-                     : map_distortion(mesh, corner_images(out.cut.corner_wedge, X), Measure::Arap);
+  out.measured = distortion_in_surface_units(o, unit, out.cut, X);
   out.mapped = mesh;
   out.mapped.UV = X / out.edge_length;
   out.mapped.FUV = out.cut.corner_wedge;
@@ -169,8 +210,9 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   const double area = out.frames.area.sum();
   check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
-  solve(o, out);
-  measure(mesh, o, out);
+  const UnitArea unit = unit_area_problem(mesh, out);
+  solve(o, unit, out);
+  measure(mesh, o, unit, out);
   return out;
 }
 
