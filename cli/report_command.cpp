@@ -176,6 +176,19 @@ void check_summary_counts(const nlohmann::json& s, const std::string& file, cons
                      std::to_string(elements) + " elements");
 }
 
+// The summary's `flipped` against the map's own flipped elements (det J <= 0, collapsed
+// ones included: the same count every task makes), where the rest mesh is at hand: a
+// hand-edited or mismatched summary put its own count on the card.
+void check_summary_flips(const nlohmann::json& s, const std::string& file, const Mesh& rest, const Mesh& map,
+                         const std::string& rest_name, const std::string& mapped_path) {
+  if (!s.contains("flipped") || !s["flipped"].is_number()) return;  // null: a surface mapped in 3D
+  const Mesh mapped = map.has_uv() ? map : to_planar(map);
+  const int flipped = map_distortion(to_planar(rest), mapped, Measure::Arap, rest_name, mapped_path).stats.flipped;
+  if (flipped >= 0 && s["flipped"].get<double>() != flipped)
+    throw InputError(file + ": flipped " + s["flipped"].dump() + " disagrees with " + mapped_path + ", which has " +
+                     std::to_string(flipped) + " flipped elements");
+}
+
 struct LoadedRun {
   std::string file;     // the summary file
   std::string input;    // the summary's input (names the section)
@@ -252,6 +265,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
                       " elements and the output " + std::to_string(elements) + "; the input is not shown");
     r.rest.reset();
   }
+  if (r.rest) check_summary_flips(s, file, *r.rest, r.run.mapped, r.input, mapped_path);
 
   const std::string measure_text = text("measure").empty() ? "fd" : text("measure");
   const std::string distortion_path = resolve(text("distortion_file"), file);

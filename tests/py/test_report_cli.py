@@ -194,6 +194,8 @@ class Report(unittest.TestCase):
         for key, value, needle in (("lower_bound", 0.7, "is above the map's own maximum"),
                                    ("elements", 999, "elements 999 disagrees with sq.obj, which has 800"),
                                    ("flipped", 5000, "flipped 5000 is not a count"),
+                                   # a count the map does not have (was shown as "7 of 800")
+                                   ("flipped", 7, "flipped 7 disagrees with sq.obj, which has 0 flipped elements"),
                                    ("max_distortion", 0.5, "max_distortion 0.5 disagrees with sq.txt"),
                                    ("measure", "qc", "a qc distortion is at least 1")):
             edited = dict(summary, **{key: value})
