@@ -532,10 +532,11 @@ void expect_invariance(bool unit_field, bool parallel = false) {
   EXPECT_LT(worst, 1e-6);
 }
 
-// The seamless problem is homogeneous, so the surface's units change nothing but the UV scale
-// (given in surface units by the edge length). The bulged frame in units of 1e-8 (coordinates
-// about 1e8) ended numerical-error under linf, its map being the start's (max 0.45 against
-// 0.25), and with coordinates about 1e-70 it stopped on non-finite gradients.
+// The seamless problem is homogeneous and the field depends on angles and area ratios, so the
+// surface's units change nothing but the UV scale (given in surface units by the edge length).
+// The bulged frame with coordinates about 1e8 ended numerical-error under linf, its map being
+// the start's (max 0.45 against 0.25); about 1e-70 it stopped on non-finite gradients, about
+// 1e100 its field's Laplacian could not be factored.
 TEST(GParam, TheSurfacesUnitsChangeNothing) {
   const Mesh frame = make_bulged_frame_surface(4, 7);
   for (const Method method : {Method::Linf, Method::Relax}) {
@@ -545,7 +546,7 @@ TEST(GParam, TheSurfacesUnitsChangeNothing) {
       o.edge_length = 0.5;
       const GParamOutcome unit = global_parametrize(frame, o);
       ASSERT_EQ(unit.result.status, SolveStatus::Solved) << unit.result.message;
-      for (const double scale : {1e8, 1e-70}) {
+      for (const double scale : {1e8, 1e-70, 1e100, 1e-120}) {
         Mesh scaled = frame;
         scaled.V *= scale;
         GParamOptions os = o;

@@ -122,34 +122,36 @@ void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
 }
 
 
-// The seamless problem of the surface scaled to unit area. The problem is homogeneous (the
-// seams' right-hand sides are 0, wedge 0 sits at the origin), so its solution times the
-// scale is the surface's own: solving it there keeps the solvers' numbers of order 1 whatever
-// the file's units (a torus in units of 1e-8, coordinates about 1e8, ended numerical-error
-// under linf where the same torus at 1 was solved).
-struct UnitArea {
-  Mesh mesh;          // the surface scaled to unit area
-  Problem problem;    // its seamless problem
-  double scale = 1;   // sqrt(area): the surface's lengths are the unit problem's times this
+// The surface at a size of order 1. The seamless problem is homogeneous (the seams'
+// right-hand sides are 0, wedge 0 sits at the origin) and the field depends on angles and
+// area ratios only, so a surface far from unit size is computed scaled and its map scaled
+// back: the file's units then change nothing (a torus with coordinates about 1e8 ended
+// numerical-error under linf, about 1e-70 stopped on non-finite gradients, about 1e80 failed
+// to factor its field's Laplacian).
+struct UnitSize {
+  double scale = 1;                  // the surface's lengths are these times scale
+  const Mesh* mesh = nullptr;        // the surface at that size (the input when scale is 1)
+  const Problem* problem = nullptr;  // its seamless problem
 };
 
-UnitArea unit_area_problem(const Mesh& mesh, const GParamOutcome& out) {
-  UnitArea unit;
-  unit.scale = std::sqrt(out.frames.area.sum());
-  unit.mesh = mesh;
-  unit.mesh.V /= unit.scale;
-  unit.problem = seamless_problem(unit.mesh, out.graph, out.cut);
-  return unit;
+// A power of two near the largest side of the bounding box (the size the reader checks),
+// so that scaling is exact, for a surface far from unit size; 1 (the surface as given, bit
+// for bit) when that side is within 2^-10 .. 2^10.
+double unit_size_scale(const Mesh& mesh) {
+  if (mesh.V.rows() == 0) return 1;
+  const double side = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
+  if (!(side > 0) || !std::isfinite(side) || (side >= 0x1p-10 && side <= 0x1p10)) return 1;
+  return std::exp2(std::round(std::log2(side)));
 }
 
-// The map and the lengths of a solve on the unit-area problem, in surface units.
+// The map and the lengths of a solve at unit size, in surface units.
 void scale_lengths(Result& r, double scale) {
   r.positions *= scale;
   for (IterationRecord& record : r.history) record.largest_move *= scale;
 }
 
-Result solve_unit_area(const GParamOptions& o, const UnitArea& unit) {
-  const Problem& problem = unit.problem;
+Result solve_unit_size(const GParamOptions& o, const UnitSize& unit) {
+  const Problem& problem = *unit.problem;
   SolverOptions solver = o.solver;
   solver.relax.move_tolerance /= unit.scale;  // a length: surface units
   if (o.measure == Measure::FieldDeviation) return run_method(problem, solver);
@@ -159,28 +161,28 @@ Result solve_unit_area(const GParamOptions& o, const UnitArea& unit) {
   return start.ok() ? local_global(problem, start.positions, solver, lg) : start;
 }
 
-void solve(const GParamOptions& o, const UnitArea& unit, GParamOutcome& out) {
+void solve(const GParamOptions& o, const UnitSize& unit, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   say(o, "solve: " + method_name(o.solver.method) + ", measure " + measure_name(o.measure));
-  out.result = solve_unit_area(o, unit);
+  out.result = solve_unit_size(o, unit);
   scale_lengths(out.result, unit.scale);
   out.solve_time_s = seconds_since(t0);
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
 }
 
-// fd against the field's frames or ARAP, measured on the unit-area surface (a uniform scale
-// of the surface and the map leaves every Jacobian as it is), weighted by the surface's areas.
-MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitArea& unit, const CutGraph& cut,
+// fd against the field's frames or ARAP, measured at unit size (a uniform scale of the
+// surface and the map leaves every Jacobian as it is), weighted by the surface's areas.
+MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitSize& unit, const CutGraph& cut,
                                           const Eigen::MatrixXd& X) {
   const Eigen::MatrixXd unit_map = X / unit.scale;
   MapDistortion d = o.measure == Measure::FieldDeviation
-                        ? frame_distortion(unit.problem, unit_map)
-                        : map_distortion(unit.mesh, corner_images(cut.corner_wedge, unit_map), Measure::Arap);
+                        ? frame_distortion(*unit.problem, unit_map)
+                        : map_distortion(*unit.mesh, corner_images(cut.corner_wedge, unit_map), Measure::Arap);
   d.weights *= unit.scale * unit.scale;
   return d;
 }
 
-void measure(const Mesh& mesh, const GParamOptions& o, const UnitArea& unit, GParamOutcome& out) {
+void measure(const Mesh& mesh, const GParamOptions& o, const UnitSize& unit, GParamOutcome& out) {
   const Eigen::MatrixXd& X = out.result.positions;
   out.measured = distortion_in_surface_units(o, unit, out.cut, X);
   out.mapped = mesh;
@@ -203,14 +205,28 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   out.graph = surface_graph(mesh, source);
   out.graph_time_s = seconds_since(t0);
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
-  compute_field(mesh, o, out);
+  UnitSize unit;
+  unit.scale = unit_size_scale(mesh);
+  Mesh scaled;
+  if (unit.scale != 1) {
+    scaled = mesh;
+    scaled.V /= unit.scale;
+  }
+  unit.mesh = unit.scale != 1 ? &scaled : &mesh;
+  compute_field(*unit.mesh, o, out);
   check_interrupt();  // solvers/interrupt.h: between the phases (the field's loops check too)
-  compute_cut(mesh, o, out);
+  compute_cut(*unit.mesh, o, out);
   check_interrupt();
+  Problem unit_problem;  // out.problem stays the surface's own (h = 1, surface units)
+  if (unit.scale != 1) {
+    out.frames.area *= unit.scale * unit.scale;
+    unit_problem = std::move(out.problem);
+    out.problem = seamless_problem(mesh, out.graph, out.cut);
+  }
+  unit.problem = unit.scale != 1 ? &unit_problem : &out.problem;
   const double area = out.frames.area.sum();
   check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
-  const UnitArea unit = unit_area_problem(mesh, out);
   solve(o, unit, out);
   measure(mesh, o, unit, out);
   return out;
