@@ -12,6 +12,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
+#include "tasks/unit_size.h"
 #include "io/text_parse.h"
 
 namespace strictmin {
@@ -134,16 +135,6 @@ struct UnitSize {
   const Problem* problem = nullptr;  // its seamless problem
 };
 
-// A power of two near the largest side of the bounding box (the size the reader checks),
-// so that scaling is exact, for a surface far from unit size; 1 (the surface as given, bit
-// for bit) when that side is within 2^-10 .. 2^10.
-double unit_size_scale(const Mesh& mesh) {
-  if (mesh.V.rows() == 0) return 1;
-  const double side = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
-  if (!(side > 0) || !std::isfinite(side) || (side >= 0x1p-10 && side <= 0x1p10)) return 1;
-  return std::exp2(std::round(std::log2(side)));
-}
-
 // The map and the lengths of a solve at unit size, in surface units.
 void scale_lengths(Result& r, double scale) {
   r.positions *= scale;
@@ -207,11 +198,7 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
   UnitSize unit;
   unit.scale = unit_size_scale(mesh);
-  Mesh scaled;
-  if (unit.scale != 1) {
-    scaled = mesh;
-    scaled.V /= unit.scale;
-  }
+  const Mesh scaled = unit.scale != 1 ? scaled_down(mesh, unit.scale) : Mesh();
   unit.mesh = unit.scale != 1 ? &scaled : &mesh;
   compute_field(*unit.mesh, o, out);
   check_interrupt();  // solvers/interrupt.h: between the phases (the field's loops check too)
