@@ -11,10 +11,13 @@
 #include "strictmin/tasks/gparam.h"
 
 namespace strictmin::cli {
+
+Mesh demo_bulged_frame() { return make_bulged_frame_surface(4, 7); }
+
 ReportSection write_gparam_demo_section(const std::string& dir, const ComparisonOptions& options,
                                         const OutputOptions& output, bool& all_solved) {
   namespace fs = std::filesystem;
-  const Mesh frame = make_bulged_frame_surface(4, 7);
+  const Mesh frame = demo_bulged_frame();
   SectionInput in;
   in.id = "gparam";
   in.title = "Global parametrization: a closed genus-1 surface";

@@ -9,6 +9,10 @@
 
 namespace strictmin::cli {
 
+// The section's surface, the input "example:bulged-frame" of its summaries (strictmin report
+// reads them again).
+Mesh demo_bulged_frame();
+
 // Writes DIR/gparam/ (UV OBJs, pictures) and returns the section; all_solved is cleared
 // when a method did not reach its tolerance.
 ReportSection write_gparam_demo_section(const std::string& dir, const ComparisonOptions& options,

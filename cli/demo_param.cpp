@@ -11,10 +11,12 @@
 
 namespace strictmin::cli {
 
+Mesh demo_spherical_cap() { return make_spherical_cap(12, 36, 1.3); }
+
 ReportSection write_param_demo_section(const std::string& dir, const ComparisonOptions& options,
                                        const OutputOptions& output, bool& all_solved) {
   namespace fs = std::filesystem;
-  const Mesh cap = make_spherical_cap(12, 36, 1.3);
+  const Mesh cap = demo_spherical_cap();
   SectionInput in;
   in.id = "param";
   in.title = "Parametrization: a spherical cap flattened";

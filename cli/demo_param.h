@@ -8,6 +8,10 @@
 
 namespace strictmin::cli {
 
+// The section's surface, the input "example:spherical-cap" of its summaries (strictmin report
+// reads them again).
+Mesh demo_spherical_cap();
+
 // Writes DIR/param/ (UV OBJs, summaries, pictures) and returns the section; all_solved is
 // cleared when a method did not reach its tolerance.
 ReportSection write_param_demo_section(const std::string& dir, const ComparisonOptions& options,

@@ -40,7 +40,7 @@ std::string write_eval_report(const EvalArgs& a, const nlohmann::json& summary, 
   in.description = "Task eval, " + summary.value("map_kind", std::string("deformation")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
                    " elements, " + flipped_phrase(d.stats.flipped) + ".";
-  describe_measure(in, summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")), "eval");
   in.rest = &rest;
   MethodRun run;
   run.method = "given";
@@ -96,6 +96,7 @@ int run_eval(const EvalArgs& a) {
   s["method"] = "given";
   s["input"] = a.rest;
   s["map"] = a.mapped.empty() ? a.rest : a.mapped;
+  s["output"] = a.output;  // the -o mesh with its per-element distortion, as every task's summary says it
   s["map_kind"] = parametrization ? "parametrization" : "deformation";
   s["measure"] = measure_name(*measure);
   s["elements"] = rest.num_elements();

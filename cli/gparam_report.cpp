@@ -67,7 +67,7 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                               std::to_string(g.rounding.translations - g.rounding.translations_off_grid) +
                               "), off it by at most " + shown_number(g.integer_error, 2) + " grid units."
                         : std::string());
-  describe_measure(in, summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")), "gparam");
   in.rest = &mesh;
   run.view_name = "view";
   run.links.emplace_back("surface with seams and singularities", pictures[0]);

@@ -36,13 +36,21 @@ std::string write_param_report(const ReportArgs& a, const nlohmann::json& summar
                    summary.value("init", std::string("tutte")) + ", " + std::to_string(mesh.num_elements()) +
                    " triangles, " + std::to_string(p.flips) + " flipped, boundary " +
                    (p.boundary_overlap ? "overlaps itself." : "does not overlap.");
-  describe_measure(in, summary.value("measure", std::string("arap")));
+  describe_measure(in, summary.value("measure", std::string("arap")), "param");
   in.rest = &mesh;
   MethodRun run = method_run(method, p, *parse_measure(summary.value("measure", std::string("arap"))));
   run.view_name = "view";
   run.links.emplace_back("summary.json", "summary.json");
   in.runs.push_back(std::move(run));
   return write_report_folder(a, summary, in.title, {in});
+}
+
+// --method tutte|lscm is that starting map itself: an --init naming the other one contradicts it.
+void check_init_agrees_with_start_method(const std::string& method, const std::string& init) {
+  const auto is_start = [](const std::string& name) { return name == "tutte" || name == "lscm"; };
+  if (is_start(method) && is_start(init) && init != method)
+    throw InputError("--init " + init + " contradicts --method " + method + ": that method is the " + method +
+                     " starting map itself (give --method " + init + ", or --init " + method + ")");
 }
 
 int run_param(ParamArgs a) {
@@ -53,6 +61,7 @@ int run_param(ParamArgs a) {
   const auto measure = parse_measure(a.measure);
   if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use arap, asap, fd, qc or iso)");
   options.measure = *measure;
+  check_init_agrees_with_start_method(a.solver.method, a.solver.init);
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {
     options.init = a.solver.init == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;

@@ -17,6 +17,8 @@
 
 #include "commands.h"
 #include "common.h"
+#include "demo_gparam.h"
+#include "demo_param.h"
 #include "report_output.h"
 #include "strictmin/io/atomic_file.h"
 #include "strictmin/io/input_error.h"
@@ -174,6 +176,19 @@ void check_summary_counts(const nlohmann::json& s, const std::string& file, cons
                      std::to_string(elements) + " elements");
 }
 
+// The summary's `flipped` against the map's own flipped elements (det J <= 0, collapsed
+// ones included: the same count every task makes), where the rest mesh is at hand: a
+// hand-edited or mismatched summary put its own count on the card.
+void check_summary_flips(const nlohmann::json& s, const std::string& file, const Mesh& rest, const Mesh& map,
+                         const std::string& rest_name, const std::string& mapped_path) {
+  if (!s.contains("flipped") || !s["flipped"].is_number()) return;  // null: a surface mapped in 3D
+  const Mesh mapped = map.has_uv() ? map : to_planar(map);
+  const int flipped = map_distortion(to_planar(rest), mapped, Measure::Arap, rest_name, mapped_path).stats.flipped;
+  if (flipped >= 0 && s["flipped"].get<double>() != flipped)
+    throw InputError(file + ": flipped " + s["flipped"].dump() + " disagrees with " + mapped_path + ", which has " +
+                     std::to_string(flipped) + " flipped elements");
+}
+
 struct LoadedRun {
   std::string file;     // the summary file
   std::string input;    // the summary's input (names the section)
@@ -184,6 +199,19 @@ struct LoadedRun {
   std::shared_ptr<Mesh> rest;
   std::vector<Handle> handles;
 };
+
+// The rest mesh and handles of "example:NAME": deform's examples, and the surfaces of demo's
+// param and gparam sections, whose summaries say "example:spherical-cap" and
+// "example:bulged-frame".
+void load_example_rest(const std::string& name, LoadedRun& r) {
+  if (name == "spherical-cap" || name == "bulged-frame") {
+    r.rest = std::make_shared<Mesh>(name == "spherical-cap" ? demo_spherical_cap() : demo_bulged_frame());
+    return;
+  }
+  Example ex = make_example(name);
+  r.rest = std::make_shared<Mesh>(std::move(ex.mesh));
+  r.handles = std::move(ex.handles);
+}
 
 LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   std::ifstream in(file);
@@ -214,9 +242,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
     throw InputError(file + ": the summary names no output mesh (run the task with -o OUT.obj, or .mesh for tets)");
   // The rest mesh: a built-in example, or the input file.
   if (r.input.rfind("example:", 0) == 0) {
-    Example ex = make_example(r.input.substr(8));
-    r.rest = std::make_shared<Mesh>(std::move(ex.mesh));
-    r.handles = std::move(ex.handles);
+    load_example_rest(r.input.substr(8), r);
   } else if (!r.input.empty() && fs::exists(resolve(r.input, file))) {
     r.rest = std::make_shared<Mesh>(read_mesh(resolve(r.input, file)));
   }
@@ -239,6 +265,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
                       " elements and the output " + std::to_string(elements) + "; the input is not shown");
     r.rest.reset();
   }
+  if (r.rest) check_summary_flips(s, file, *r.rest, r.run.mapped, r.input, mapped_path);
 
   const std::string measure_text = text("measure").empty() ? "fd" : text("measure");
   const std::string distortion_path = resolve(text("distortion_file"), file);
@@ -387,7 +414,7 @@ int run_report(ReportCommandArgs a) {
       all_solved = all_solved && r.run.status == "solved";
       in.runs.push_back(r.run);
     }
-    describe_measure(in, measure);
+    describe_measure(in, measure, first.summary.value("task", std::string("deform")));
     in.description = std::to_string(in.runs.size()) + " result" + (in.runs.size() == 1 ? "" : "s") + " for input " +
                      (input.empty() ? std::string("(unknown)") : input) + ".";
     report.sections.push_back(write_section(a.dir, in, options));

@@ -113,7 +113,7 @@ std::string write_task_report(const ReportArgs& a, const nlohmann::json& summary
   in.description = std::string("Task ") + summary.value("task", std::string("deform")) + ", measure " +
                    summary.value("measure", std::string("fd")) + ", " + std::to_string(rest.num_elements()) +
                    " elements.";
-  describe_measure(in, summary.value("measure", std::string("fd")));
+  describe_measure(in, summary.value("measure", std::string("fd")), summary.value("task", std::string("deform")));
   in.rest = &rest;
   in.handles = handles;
   const std::string measure = summary.value("measure", std::string("fd"));
@@ -143,7 +143,11 @@ std::string file_url(const std::string& path) {
   return url;
 }
 
-std::string measure_description(const std::string& m) {
+std::string measure_description(const std::string& m, const std::string& task) {
+  // Field deviation is from the identity in deformations only: a parametrization's targets
+  // are rotations (gparam: the cross field's, param: the starting map's), docs/gparam.md.
+  if (m == "fd" && task == "gparam") return "field deviation \u2016J \u2212 R\u2016 from the cross field's frames";
+  if (m == "fd" && task == "param") return "field deviation \u2016J \u2212 R\u2016 from the starting map's rotations";
   if (m == "fd") return "field deviation \u2016J \u2212 I\u2016";
   if (m == "arap") return "ARAP distortion";
   if (m == "asap") return "ASAP distortion";
@@ -153,8 +157,8 @@ std::string measure_description(const std::string& m) {
   return m;
 }
 
-void describe_measure(SectionInput& in, const std::string& measure) {
-  in.measure = measure_description(measure);
+void describe_measure(SectionInput& in, const std::string& measure, const std::string& task) {
+  in.measure = measure_description(measure, task);
   const auto m = parse_measure(measure);
   in.value_name = m && shown_as_excess(*m) ? "distortion \u2212 1" : "distortion";
 }

@@ -48,10 +48,11 @@ std::string write_task_report(const ReportArgs& args, const nlohmann::json& summ
 // "file:///absolute/path" of a local file, for the line telling where to open a report.
 std::string file_url(const std::string& path);
 
-// "field deviation ||J - I||" etc. for a measure's short name (the name itself when unknown).
-std::string measure_description(const std::string& measure);
+// "field deviation ||J - I||" etc. for a measure's short name and the task that measured it (fd
+// of gparam and param is from rotations, not from I; the name itself when unknown).
+std::string measure_description(const std::string& measure, const std::string& task);
 // The section's measure and what its cards' numbers are (qc and iso: their excess over 1).
-void describe_measure(SectionInput& in, const std::string& measure);
+void describe_measure(SectionInput& in, const std::string& measure, const std::string& task);
 
 // A plain title for an input: "example:square" -> "square", "dir/gecko.obj" -> "gecko.obj".
 std::string input_title(const std::string& input);

@@ -532,6 +532,40 @@ void expect_invariance(bool unit_field, bool parallel = false) {
   EXPECT_LT(worst, 1e-6);
 }
 
+// The seamless problem is homogeneous and the field depends on angles and area ratios, so the
+// surface's units change nothing but the UV scale (given in surface units by the edge length).
+// The bulged frame with coordinates about 1e8 ended numerical-error under linf, its map being
+// the start's (max 0.45 against 0.25); about 1e-70 it stopped on non-finite gradients, about
+// 1e100 its field's Laplacian could not be factored.
+TEST(GParam, TheSurfacesUnitsChangeNothing) {
+  const Mesh frame = make_bulged_frame_surface(4, 7);
+  for (const Method method : {Method::Linf, Method::Relax}) {
+    for (const Measure measure : {Measure::FieldDeviation, Measure::Arap}) {
+      GParamOptions o = polycube_options(method);
+      o.measure = measure;
+      o.edge_length = 0.5;
+      const GParamOutcome unit = global_parametrize(frame, o);
+      ASSERT_EQ(unit.result.status, SolveStatus::Solved) << unit.result.message;
+      for (const double scale : {1e8, 1e-70, 1e100, 1e-120}) {
+        Mesh scaled = frame;
+        scaled.V *= scale;
+        GParamOptions os = o;
+        os.edge_length = 0.5 * scale;
+        const GParamOutcome g = global_parametrize(scaled, os);
+        const std::string what = method_name(method) + " " + measure_name(measure) + " at " + std::to_string(scale);
+        EXPECT_EQ(g.result.status, SolveStatus::Solved) << what << ": " << g.result.message;
+        EXPECT_NEAR(g.measured.stats.max, unit.measured.stats.max, 1e-6) << what;
+        EXPECT_NEAR(g.measured.stats.l2, unit.measured.stats.l2, 1e-6) << what;
+        EXPECT_NEAR(g.measured.weights.sum(), unit.measured.weights.sum() * scale * scale,
+                    1e-9 * unit.measured.weights.sum() * scale * scale) << what << ": the surface's areas";
+        EXPECT_LT(g.seam_error, 1e-9) << what;
+        EXPECT_NEAR(g.result.positions.cwiseAbs().maxCoeff(), unit.result.positions.cwiseAbs().maxCoeff() * scale,
+                    1e-6 * unit.result.positions.cwiseAbs().maxCoeff() * scale) << what << ": surface units";
+      }
+    }
+  }
+}
+
 TEST(SharedMeshes, Invariance) { expect_invariance(false); }
 TEST(SharedMeshes, InvarianceOfTheUnitField) { expect_invariance(true); }
 TEST(SharedMeshes, InvarianceOfTheParallelField) { expect_invariance(false, true); }
@@ -834,5 +868,32 @@ TEST(IntegerGrid, SurfacesWithHandlesRoundCompletely) {
     EXPECT_EQ(g.rounding.translations, static_cast<int>(g.cut.branches.size()));
     EXPECT_LT(g.integer_error, 1e-9) << method_name(method);
     EXPECT_LT(g.seam_error, 1e-9) << method_name(method);
+  }
+}
+
+// --integer-grid at any units: the surface far from unit size is rounded at the unit size's
+// edge length, so the texture coordinates are the same grid map (the bulged frame, whose
+// optimum is not on the grid by itself).
+TEST(IntegerGrid, TheSurfacesUnitsChangeNothing) {
+  const Mesh frame = make_bulged_frame_surface(4, 7);
+  GParamOptions o = polycube_options(Method::Linf);
+  o.edge_length = 0.5;
+  o.integer_grid = true;
+  const GParamOutcome unit = global_parametrize(frame, o);
+  ASSERT_EQ(unit.result.status, SolveStatus::Solved) << unit.result.message;
+  EXPECT_LT(unit.integer_error, 1e-9);
+  for (const double scale : {1e8, 1e-70}) {
+    Mesh scaled = frame;
+    scaled.V *= scale;
+    GParamOptions os = o;
+    os.edge_length = 0.5 * scale;
+    const GParamOutcome g = global_parametrize(scaled, os);
+    EXPECT_EQ(g.result.status, SolveStatus::Solved) << scale << ": " << g.result.message;
+    EXPECT_LT(g.integer_error, 1e-9) << scale;
+    EXPECT_EQ(g.rounding.singularities, unit.rounding.singularities);
+    EXPECT_NEAR(g.measured.stats.max, unit.measured.stats.max, 1e-6) << scale;
+    EXPECT_LT((g.mapped.UV - unit.mapped.UV).cwiseAbs().maxCoeff(), 1e-6) << scale << ": the same grid map";
+    // The library's problem in surface units carries the rounding too.
+    EXPECT_EQ(g.problem.eq_matrix.rows(), unit.problem.eq_matrix.rows());
   }
 }

@@ -184,4 +184,38 @@ TEST(LocalGlobal, AsapOfASimilarityIsZero) {
   EXPECT_LT(out.measured.stats.max, 1e-3);
 }
 
+// relax's sweeps with local steps keep relax's own criterion (docs/formats.md, "Statuses"):
+// with --move-tolerance > 0 they stop once a sweep moves no vertex by it, and reaching the
+// sweep cap first is max-iterations. Both were ignored: every sweep ran and the status was
+// solved whatever the tolerance.
+DeformOutcome arap_relax_on_the_square(int sweeps, double move_tolerance) {
+  const Example ex = make_example("square");
+  DeformOptions o;
+  o.measure = Measure::Arap;
+  o.solver.method = Method::Relax;
+  o.solver.relax.sweeps = sweeps;
+  o.solver.relax.move_tolerance = move_tolerance;
+  return deform(ex.mesh, ex.handles, o);
+}
+
+TEST(LocalGlobal, RelaxSweepsStopAtTheMoveTolerance) {
+  const DeformOutcome out = arap_relax_on_the_square(50, 1e-3);
+  EXPECT_EQ(out.result.status, SolveStatus::Solved) << out.result.message;
+  EXPECT_NE(out.result.message.find("no vertex moved more than the move tolerance"), std::string::npos)
+      << out.result.message;
+  ASSERT_FALSE(out.result.history.empty());
+  EXPECT_LT(out.result.history.back().largest_move, 1e-3);
+  const DeformOutcome all = arap_relax_on_the_square(50, 0);  // no tolerance: every sweep
+  EXPECT_EQ(all.result.status, SolveStatus::Solved) << all.result.message;
+  EXPECT_GT(all.result.iterations, out.result.iterations);
+}
+
+TEST(LocalGlobal, RelaxSweepsAtTheirCapWithAMoveToleranceAreMaxIterations) {
+  const DeformOutcome out = arap_relax_on_the_square(2, 1e-30);
+  EXPECT_EQ(out.result.status, SolveStatus::MaxIterations) << out.result.message;
+  EXPECT_NE(out.result.message.find("reached the sweep cap (2)"), std::string::npos) << out.result.message;
+  const DeformOutcome none = arap_relax_on_the_square(0, 1.0);  // no sweep: the tolerance unchecked
+  EXPECT_EQ(none.result.status, SolveStatus::MaxIterations) << none.result.message;
+}
+
 }  // namespace

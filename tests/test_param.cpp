@@ -185,6 +185,35 @@ TEST(Param, SphericalCapLinfAndStrictBeatL2AndLscm) {
 // positions (as for qc): the maps keep their size, and on a cap (not developable, but with
 // a conformal map to the plane) the distortion is small but not zero. Before, linf returned
 // a map of size 1e-8, "solved" at 4e-9.
+// The map is homogeneous in the surface's size: its units change nothing but the map's (a
+// cap with coordinates about 1e60 stopped on "gradients are not finite", about 1e-55 ended
+// numerical-error with a maximum of 7e83).
+TEST(Param, TheSurfacesUnitsChangeNothing) {
+  const Mesh cap = make_spherical_cap(6, 18, 1.2);
+  for (const Measure measure : {Measure::Arap, Measure::FieldDeviation, Measure::Quasiconformal}) {
+    ParamOptions o;
+    o.measure = measure;
+    o.solver.method = Method::Linf;
+    const ParamOutcome unit = parametrize(cap, o);
+    ASSERT_EQ(unit.result.status, SolveStatus::Solved) << unit.result.message;
+    for (const double scale : {1e60, 1e-55, 1e120}) {
+      Mesh scaled = cap;
+      scaled.V *= scale;
+      const ParamOutcome p = parametrize(scaled, o);
+      const std::string what = measure_name(measure) + " at " + std::to_string(scale);
+      EXPECT_EQ(p.result.status, SolveStatus::Solved) << what << ": " << p.result.message;
+      EXPECT_NEAR(p.measured.stats.max, unit.measured.stats.max, 1e-6) << what;
+      EXPECT_NEAR(p.measured.stats.l2, unit.measured.stats.l2, 1e-6) << what;
+      EXPECT_EQ(p.flips, 0) << what;
+      const double extent = unit.result.positions.cwiseAbs().maxCoeff();
+      EXPECT_NEAR(p.result.positions.cwiseAbs().maxCoeff(), extent * scale, 1e-6 * extent * scale)
+          << what << ": the map in surface units";
+      EXPECT_NEAR(p.measured.weights.sum(), unit.measured.weights.sum() * scale * scale,
+                  1e-9 * unit.measured.weights.sum() * scale * scale) << what << ": the surface's areas";
+    }
+  }
+}
+
 TEST(Param, AsapKeepsTheMapsSize) {
   const Mesh cap = make_spherical_cap(8, 24, 1.2);
   double rest_area = 0;

@@ -14,6 +14,7 @@
 #include "strictmin/problem/parts.h"
 #include "strictmin/problem/problem.h"
 #include "strictmin/problem/subproblem.h"
+#include "strictmin/tasks/map_distortion.h"
 
 using namespace strictmin;
 
@@ -136,6 +137,33 @@ TEST(Problem, SurfaceTrianglesGetIsometricFrames) {
     const Eigen::MatrixXd J = p.jacobian(e, flat.V);
     EXPECT_NEAR(distortion(Measure::Arap, J, p.target(e)), 0.0, 1e-12);
     EXPECT_NEAR(J.determinant(), 1.0, 1e-12);
+  }
+}
+
+// The frame's second axis, (e1 x e2) x e1, is cubic in the size: a surface with coordinates
+// about 1e60 had non-finite gradients ("a degenerate element"), and about 1e-60 zero ones,
+// though the reader takes sizes up to 1e150. Edges that far from unit length are measured
+// scaled by an exact power of two; ordinary ones exactly as before.
+TEST(Problem, SurfaceFramesAtEverySize) {
+  const Mesh flat = make_grid(3, 3);
+  Mesh surface;
+  surface.F = flat.F;
+  surface.V.resize(flat.V.rows(), 3);
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  for (int v = 0; v < flat.V.rows(); ++v) surface.V.row(v) = (Q * Eigen::Vector3d(flat.V(v, 0), flat.V(v, 1), 0)).transpose();
+  const Problem unit = make_problem(surface);
+  for (const double scale : {1e60, 1e120, 1e-60, 1e-120}) {
+    Mesh scaled = surface;
+    scaled.V *= scale;
+    const Problem p = make_problem(scaled);
+    ASSERT_TRUE(p.gradients.allFinite()) << scale;
+    EXPECT_NEAR(p.weights.sum() / (scale * scale), 1.0, 1e-13) << scale;
+    EXPECT_LT((p.gradients * scale - unit.gradients).cwiseAbs().maxCoeff(), 1e-12) << scale;
+    for (int e = 0; e < p.num_elements(); ++e)
+      EXPECT_NEAR(distortion(Measure::Arap, p.jacobian(e, flat.V * scale), p.target(e)), 0.0, 1e-12) << scale;
+    // A surface mapped in 3D (deform, eval): the identity is undistorted at every size.
+    const MapDistortion identity = map_distortion(scaled, scaled, Measure::FieldDeviation);
+    EXPECT_LT(identity.stats.max, 1e-12) << scale;
   }
 }
 

@@ -6,6 +6,7 @@
 #include "convert.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/tasks/interp.h"
+#include "io/text_parse.h"
 
 namespace py = pybind11;
 
@@ -103,7 +104,7 @@ void check_task_ranges(const TaskOptions& o, Task task, const std::string& key) 
   if (key == "lg_iterations" && task != Task::Interp && o.local_global.max_iterations < 1)
     throw InputError("lg_iterations must be >= 1 (got " + std::to_string(o.local_global.max_iterations) + ")");
   if (key == "lg_tolerance" && !(o.local_global.relative_change >= 0))
-    throw InputError("lg_tolerance must be >= 0 (got " + std::to_string(o.local_global.relative_change) + ")");
+    throw InputError("lg_tolerance must be >= 0 (got " + io_detail::number_text(o.local_global.relative_change) + ")");
 }
 
 }  // namespace

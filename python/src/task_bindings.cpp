@@ -21,6 +21,7 @@
 #include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/param.h"
+#include "io/text_parse.h"
 
 // OpenBLAS's thread control, when CHOLMOD runs on OpenBLAS (weak: absent with other BLAS).
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -124,6 +125,9 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   ParamOptions options;
   options.measure = measure_of(measure);
   // init names the starting map (tutte, lscm); a method name there is relax's start.
+  if ((method == "tutte" || method == "lscm") && (o.init == "tutte" || o.init == "lscm") && o.init != method)
+    throw InputError("init='" + o.init + "' contradicts method='" + method + "': that method is the " + method +
+                     " starting map itself (give method='" + o.init + "', or init='" + method + "')");
   if (o.init == "lscm") options.init = ParamInit::Lscm;
   if (method == "tutte" || method == "lscm") {
     options.init = method == "tutte" ? ParamInit::Tutte : ParamInit::Lscm;
@@ -169,12 +173,12 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   options.measure = *m;
   if (edge_length && quads) throw InputError("give edge_length or quads, not both");
   if (edge_length && !(*edge_length > 0 && std::isfinite(*edge_length)))
-    throw InputError("edge_length must be a positive finite number, got " + std::to_string(*edge_length));
+    throw InputError("edge_length must be a positive finite number, got " + io_detail::number_text(*edge_length));
   if (quads && *quads <= 0) throw InputError("quads must be positive, got " + std::to_string(*quads));
   if (edge_length) options.edge_length = *edge_length;
   if (quads) options.quads = *quads;
   if (!(curvature_alignment > 0 && std::isfinite(curvature_alignment)))
-    throw InputError("curvature_alignment must be a positive number, got " + std::to_string(curvature_alignment));
+    throw InputError("curvature_alignment must be a positive number, got " + io_detail::number_text(curvature_alignment));
   options.curvature_alignment = curvature_alignment;
   if (field_name != "smoothest" && field_name != "unit" && field_name != "curvature" && field_name != "given")
     throw InputError("field takes 'smoothest', 'unit', 'curvature' or a #F by 3 array of directions, not '" + field_name + "'");

@@ -251,11 +251,12 @@ def deform(V, F, handle_indices, handle_positions, method="linf", measure="fd", 
                                     _progress(progress, verbose)))
 
 
-def param(V, F, method="linf", measure="arap", init="tutte", *, progress=None, verbose=False, **options):
+def param(V, F, method="linf", measure="arap", init=None, *, progress=None, verbose=False, **options):
     """Parametrize a disk-topology surface (one boundary loop) in the plane with a free
     boundary (method: tutte, lscm, l2, linf, relax, direct, lp, irls; measure: arap, asap,
-    fd; init: tutte or lscm, the starting map). relax starts from ``relax_init`` (l2, lp,
-    irls, linf; default linf). Returns a Result with ``uv``."""
+    fd; init: tutte (None: the default) or lscm, the starting map; method tutte or lscm is
+    that map itself, and an init naming the other one is a ValueError). relax starts from
+    ``relax_init`` (l2, lp, irls, linf; default linf). Returns a Result with ``uv``."""
     V = _vertices(V)
     F = _faces(F)
     if init is not None:

@@ -6,6 +6,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/validate.h"
+#include "problem/frame_axes.h"
 
 namespace strictmin {
 
@@ -105,12 +106,13 @@ void Problem::fix(const std::vector<Handle>& handles) {
 
 Eigen::Matrix<double, 3, 2> local_frame_coordinates(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                                     const Eigen::Vector3d& p2) {
-  const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
-  const Eigen::Vector3d x = e1.normalized();
-  const Eigen::Vector3d y = (e1.cross(e2)).cross(e1).normalized();  // in-plane, orthogonal to x
+  // Edges far from unit length are measured scaled by an exact power of two (frame_axes.h).
+  const double s = frame_edge_scale(p1 - p0, p2 - p0);
+  const Eigen::Vector3d e1 = (p1 - p0) * s, e2 = (p2 - p0) * s;
+  const Eigen::Matrix<double, 3, 2> axes = frame_axes(p0, p1, p2);  // x along e1, y in-plane
   Eigen::Matrix<double, 3, 2> P;
-  P << 0.0, 0.0, e1.norm(), 0.0, e2.dot(x), e2.dot(y);
-  return P;
+  P << 0.0, 0.0, e1.norm(), 0.0, e2.dot(axes.col(0)), e2.dot(axes.col(1));
+  return P / s;
 }
 
 namespace {

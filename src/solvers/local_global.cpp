@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/measures/measures.h"
@@ -21,6 +22,7 @@
 #include "local_targets.h"
 #include "relax_sweep.h"
 #include "option_check.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 namespace {
@@ -49,6 +51,25 @@ double bound_excess(const Eigen::VectorXd& d, const Eigen::VectorXd& bounds) {
 // its global step minimizes), the maximum otherwise.
 double objective(const Problem& p, const Eigen::VectorXd& d, const Eigen::VectorXd& bounds, bool energy) {
   return energy ? p.weights.dot(d.cwiseProduct(d)) : max_of(d, bounds);
+}
+
+// relax's sweeps with local steps and --move-tolerance > 0: the sweep moved no vertex by the
+// tolerance, relax's own criterion (relax.cpp); without a tolerance every sweep runs.
+bool sweep_settled(const GlobalStep& step, const RelaxOptions& relax, const IterationRecord& record) {
+  return step.is_sweep() && relax.move_tolerance > 0 && record.largest_move < relax.move_tolerance;
+}
+
+// Why relax's sweeps with local steps ended without settling: all ran, or (with
+// --move-tolerance > 0) the cap came first, as relax without local steps says it.
+std::string sweeps_run_reason(bool move_tolerance_given, int sweeps, StopState& stop) {
+  if (!move_tolerance_given) {
+    stop.criterion_met = true;
+    return "ran the requested " + std::to_string(sweeps) + " sweeps with local steps";
+  }
+  stop.cap_reached = true;
+  if (sweeps == 0) return "no sweep ran (--sweeps 0), so the move tolerance could not be checked";
+  return "reached the sweep cap (" + std::to_string(sweeps) +
+         ") with vertices still moving more than the move tolerance (sweeps with local steps)";
 }
 
 // The loose gap of an inexact early linf step: half the last relative change of the
@@ -199,6 +220,10 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (current <= kZeroDistortion) {
       stop.criterion_met = true;
       reason = "converged: the distortion is zero to rounding";
+    } else if (sweep_settled(step, solver.relax, rec)) {
+      stop.criterion_met = true;
+      reason = "converged: no vertex moved more than the move tolerance in sweep " + std::to_string(it) +
+               " (sweeps with local steps)";
     } else if (!fixed_count && last_change <= o.relative_change) {
       if (inexact) {
         inexact = false;  // the criterion met with a loose step: certify with a full one
@@ -209,8 +234,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     }
   }
   if (fixed_count && reason.empty()) {
-    stop.criterion_met = true;
-    reason = "ran the requested " + std::to_string(o.max_iterations) + " sweeps with local steps";
+    reason = sweeps_run_reason(step.is_sweep() && solver.relax.move_tolerance > 0, o.max_iterations, stop);
   } else if (reason.empty()) {
     stop.cap_reached = true;
     // Almost: the last change within ten times the tolerance (docs/formats.md).
@@ -278,7 +302,7 @@ bool LocalGlobalOptions::is_valid(std::string* why) const {
             "acceleration_window must be in [0, 50] (got " + std::to_string(acceleration_window) + ")")
       .that(!std::isnan(relative_change), "relative_change must be a number (got nan)")
       .that(target_extrapolation >= 0 && target_extrapolation <= 1,
-            "target_extrapolation must be in [0, 1] (got " + std::to_string(target_extrapolation) + ")")
+            "target_extrapolation must be in [0, 1] (got " + io_detail::number_text(target_extrapolation) + ")")
       .ok();
 }
 
@@ -304,7 +328,8 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   for (int v = 0; v < p.num_vertices; ++v)
     if (p.fixed[v]) out.positions.row(v) = p.positions.row(v);
   if (solver.method == Method::Exact)
-    throw InputError("the exact strict minimizer is for field deviation only; use direct or relax with ARAP/ASAP");
+    throw InputError("--method exact (the exact strict minimizer) is for --measure fd only; under arap or asap use "
+                     "--method direct or relax");
   // No new flips: first without the constraint; when that map adds no flip it is the answer
   // (and the better one: the cut-back steps can stall where a step must pass through a flip
   // to get around, dragon from Tutte: 19.3 instead of 0.98). Otherwise run again with every

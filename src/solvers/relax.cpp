@@ -12,6 +12,7 @@
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/interrupt.h"
 #include "option_check.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 
@@ -98,7 +99,7 @@ bool RelaxOptions::is_valid(std::string* why) const {
       .at_least("sweeps", sweeps, 0)
       .non_negative("move_tolerance", move_tolerance)
       .that(accept_tolerance >= 0 && accept_tolerance < 1,
-            "accept_tolerance must be in [0, 1) (got " + std::to_string(accept_tolerance) + ")")
+            "accept_tolerance must be in [0, 1) (got " + io_detail::number_text(accept_tolerance) + ")")
       .ok();
 }
 

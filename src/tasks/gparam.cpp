@@ -12,6 +12,8 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
+#include "tasks/unit_size.h"
+#include "io/text_parse.h"
 
 namespace strictmin {
 namespace {
@@ -20,7 +22,7 @@ void check_options(const GParamOptions& o) {
   if (o.measure != Measure::FieldDeviation && o.measure != Measure::Arap)
     throw InputError("gparam minimizes fd or arap; '" + measure_name(o.measure) + "' is not available");
   if (!(o.edge_length > 0) && o.edge_length != 0)
-    throw InputError("--edge-length must be a positive number, got " + std::to_string(o.edge_length));
+    throw InputError("--edge-length must be a positive number, got " + io_detail::number_text(o.edge_length));
   if (!std::isfinite(o.edge_length)) throw InputError("--edge-length must be finite");
   if (o.edge_length == 0 && o.quads <= 0)
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
@@ -121,17 +123,53 @@ void compute_cut(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
 }
 
 
-void solve(const GParamOptions& o, GParamOutcome& out) {
+// The surface at a size of order 1. The seamless problem is homogeneous (the seams'
+// right-hand sides are 0, wedge 0 sits at the origin) and the field depends on angles and
+// area ratios only, so a surface far from unit size is computed scaled and its map scaled
+// back: the file's units then change nothing (a torus with coordinates about 1e8 ended
+// numerical-error under linf, about 1e-70 stopped on non-finite gradients, about 1e80 failed
+// to factor its field's Laplacian).
+struct UnitSize {
+  double scale = 1;                  // the surface's lengths are these times scale
+  const Mesh* mesh = nullptr;        // the surface at that size (the input when scale is 1)
+  const Problem* problem = nullptr;  // its seamless problem
+};
+
+// The map and the lengths of a solve at unit size, in surface units.
+void scale_lengths(Result& r, double scale) {
+  r.positions *= scale;
+  for (IterationRecord& record : r.history) record.largest_move *= scale;
+}
+
+Result solve_unit_size(const GParamOptions& o, const UnitSize& unit) {
+  const Problem& problem = *unit.problem;
+  SolverOptions solver = o.solver;
+  solver.relax.move_tolerance /= unit.scale;  // a length: surface units
+  if (o.measure == Measure::FieldDeviation) return run_method(problem, solver);
+  LocalGlobalOptions lg = o.local_global;
+  lg.local = LocalStep::Rotation;
+  const Result start = solve_l2(problem);  // the field-guided map starts local-global
+  return start.ok() ? local_global(problem, start.positions, solver, lg) : start;
+}
+
+// --integer-grid: the problem that is solved (the surface at unit size) is rounded to the grid
+// of the edge length at that size; out.problem, in surface units, takes the same constraints
+// scaled back when the two differ.
+void round_unit_problem(const GParamOptions& o, const UnitSize& unit, Problem& solved, GParamOutcome& out) {
+  out.rounding =
+      round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale, solved, o.progress);
+  if (&solved == &out.problem) return;
+  out.problem.eq_matrix = solved.eq_matrix;
+  out.problem.eq_rhs = solved.eq_rhs * unit.scale;
+  out.problem.fixed = solved.fixed;
+  out.problem.positions = solved.positions * unit.scale;
+}
+
+void solve(const GParamOptions& o, const UnitSize& unit, GParamOutcome& out) {
   const auto t0 = std::chrono::steady_clock::now();
   say(o, "solve: " + method_name(o.solver.method) + ", measure " + measure_name(o.measure));
-  if (o.measure == Measure::FieldDeviation) {
-    out.result = run_method(out.problem, o.solver);
-  } else {
-    LocalGlobalOptions lg = o.local_global;
-    lg.local = LocalStep::Rotation;
-    const Result start = solve_l2(out.problem);  // the field-guided map starts local-global
-    out.result = start.ok() ? local_global(out.problem, start.positions, o.solver, lg) : start;
-  }
+  out.result = solve_unit_size(o, unit);
+  scale_lengths(out.result, unit.scale);
   out.solve_time_s = seconds_since(t0);
   say(o, "solve: " + status_name(out.result.status) + ", " + std::to_string(out.solve_time_s) + " s");
 }
@@ -151,11 +189,21 @@ void note_values_off_the_grid(GParamOutcome& out) {
   out.result.message = why + out.result.message;
 }
 
-void measure(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out) {
+// fd against the field's frames or ARAP, measured at unit size (a uniform scale of the
+// surface and the map leaves every Jacobian as it is), weighted by the surface's areas.
+MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitSize& unit, const CutGraph& cut,
+                                          const Eigen::MatrixXd& X) {
+  const Eigen::MatrixXd unit_map = X / unit.scale;
+  MapDistortion d = o.measure == Measure::FieldDeviation
+                        ? frame_distortion(*unit.problem, unit_map)
+                        : map_distortion(*unit.mesh, corner_images(cut.corner_wedge, unit_map), Measure::Arap);
+  d.weights *= unit.scale * unit.scale;
+  return d;
+}
+
+void measure(const Mesh& mesh, const GParamOptions& o, const UnitSize& unit, GParamOutcome& out) {
   const Eigen::MatrixXd& X = out.result.positions;
-  out.measured = o.measure == Measure::FieldDeviation
-                     ? frame_distortion(out.problem, X)
-                     : map_distortion(mesh, corner_images(out.cut.corner_wedge, X), Measure::Arap);
+  out.measured = distortion_in_surface_units(o, unit, out.cut, X);
   out.mapped = mesh;
   out.mapped.UV = X / out.edge_length;
   out.mapped.FUV = out.cut.corner_wedge;
@@ -180,18 +228,28 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   out.graph = surface_graph(mesh, source);
   out.graph_time_s = seconds_since(t0);
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
-  compute_field(mesh, o, out);
+  UnitSize unit;
+  unit.scale = unit_size_scale(mesh);
+  const Mesh scaled = unit.scale != 1 ? scaled_down(mesh, unit.scale) : Mesh();
+  unit.mesh = unit.scale != 1 ? &scaled : &mesh;
+  compute_field(*unit.mesh, o, out);
   check_interrupt();  // solvers/interrupt.h: between the phases (the field's loops check too)
-  compute_cut(mesh, o, out);
+  compute_cut(*unit.mesh, o, out);
   check_interrupt();
+  Problem unit_problem;  // out.problem stays the surface's own (h = 1, surface units)
+  if (unit.scale != 1) {
+    out.frames.area *= unit.scale * unit.scale;
+    unit_problem = std::move(out.problem);
+    out.problem = seamless_problem(mesh, out.graph, out.cut);
+  }
+  unit.problem = unit.scale != 1 ? &unit_problem : &out.problem;
   const double area = out.frames.area.sum();
   check_edge_length_scale(o, area);
   out.edge_length = o.edge_length > 0 ? o.edge_length : std::sqrt(area / o.quads);
-  if (o.integer_grid)
-    out.rounding = round_to_integer_grid(mesh, out.graph, out.cut, out.singular, out.edge_length, out.problem, o.progress);
+  if (o.integer_grid) round_unit_problem(o, unit, unit.scale != 1 ? unit_problem : out.problem, out);
   check_interrupt();
-  solve(o, out);
-  measure(mesh, o, out);
+  solve(o, unit, out);
+  measure(mesh, o, unit, out);
   return out;
 }
 

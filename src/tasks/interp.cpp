@@ -144,7 +144,8 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
   if (!(t >= 0.0 && t <= 1.0)) throw InputError("interpolation time t = " + std::to_string(t) + " is outside [0, 1]");
   const Method method = options.solver.method;
   if (method == Method::Exact)
-    throw InputError("interp: the exact strict minimizer is for field deviation only; use direct or relax");
+    throw InputError("interp: --method exact (the exact strict minimizer) is for field deviation only; use --method "
+                     "direct or relax");
   const int V = problem_.num_vertices;
   if (options.pin_vertex >= V || (options.pin_vertex >= 0 && component_[options.pin_vertex] < 0))
     throw InputError("interp: pinned vertex " + std::to_string(options.pin_vertex) + " is not a vertex of an element (the mesh has " +

@@ -4,6 +4,7 @@
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/problem/problem.h"
+#include "problem/frame_axes.h"
 
 namespace strictmin {
 
@@ -40,10 +41,7 @@ MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Me
     if (surface_to_3d) {
       // The identity of the surface in 3D: the element's frame axes (local_frame_coordinates).
       const Eigen::Vector3d p0 = rest.V.row(rest.F(e, 0)), p1 = rest.V.row(rest.F(e, 1)), p2 = rest.V.row(rest.F(e, 2));
-      const Eigen::Vector3d x = (p1 - p0).normalized();
-      const Eigen::Vector3d y = ((p1 - p0).cross(p2 - p0)).cross(p1 - p0).normalized();
-      R.resize(3, 2);
-      R << x, y;
+      R = frame_axes(p0, p1, p2);
     }
     out.distortion(e) = distortion(measure, J, R);
     out.flipped(e) = is_flipped(J) ? 1 : 0;

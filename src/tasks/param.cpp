@@ -10,16 +10,57 @@
 #include "strictmin/report/stats.h"
 #include "strictmin/tasks/conformal_method.h"
 #include "strictmin/solvers/no_flips.h"
+#include "tasks/unit_size.h"
 
 namespace strictmin {
 namespace {
 
+ParamOutcome parametrize_as_given(const Mesh& mesh, const ParamOptions& options, const std::string& source);
+
+// A problem of the surface scaled down by `scale`, in the surface's units: lengths times
+// scale, gradients divided by it, areas times its square (the targets, rotations or frames of
+// the map's Jacobians, do not change with a uniform scale).
+void scale_problem_up(Problem& p, double scale) {
+  p.positions *= scale;
+  p.gradients /= scale;
+  p.weights *= scale * scale;
+  p.eq_rhs *= scale;
+}
+
+// The outcome of the surface scaled down by `scale`, in the surface's units.
+void scale_outcome_up(ParamOutcome& out, const Mesh& mesh, double scale) {
+  scale_problem_up(out.problem, scale);
+  out.initial *= scale;
+  out.result.positions *= scale;
+  for (IterationRecord& record : out.result.history) record.largest_move *= scale;
+  out.mapped = mesh;
+  out.mapped.UV = out.result.positions;
+  out.mapped.FUV = mesh.F;
+  out.measured.weights *= scale * scale;
+}
 
 }  // namespace
 
 std::string init_name(ParamInit i) { return i == ParamInit::Tutte ? "tutte" : "lscm"; }
 
+// The map is homogeneous in the surface's size (free boundary, one pinned vertex where the
+// start puts it, targets of Jacobians), so a surface far from unit size is parametrized
+// scaled down by a power of two and its map scaled back: the file's units change nothing (a
+// disk with coordinates about 1e55 stopped on "gradients are not finite", one about 1e-55
+// ended numerical-error with a maximum of 7e83).
 ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const std::string& source) {
+  const double scale = unit_size_scale(mesh);
+  if (scale == 1) return parametrize_as_given(mesh, options, source);
+  ParamOptions scaled_options = options;
+  scaled_options.solver.relax.move_tolerance /= scale;  // a length: surface units
+  ParamOutcome out = parametrize_as_given(scaled_down(mesh, scale), scaled_options, source);
+  scale_outcome_up(out, mesh, scale);
+  return out;
+}
+
+namespace {
+
+ParamOutcome parametrize_as_given(const Mesh& mesh, const ParamOptions& options, const std::string& source) {
   const Measure m = options.measure;
   const bool conformal = is_conformal_measure(m);
   if (m != Measure::Arap && m != Measure::Asap && m != Measure::FieldDeviation && !conformal)
@@ -77,5 +118,7 @@ ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const st
   out.boundary_overlap = polygon_self_intersects(X, out.boundary);
   return out;
 }
+
+}  // namespace
 
 }  // namespace strictmin

@@ -254,8 +254,14 @@ class Deform(unittest.TestCase):
     def test_exact_with_arap_is_refused(self):
         out = os.path.join(self.dir, "x.obj")
         p = run("deform", "--example", "bar", "--method", "exact", "--measure", "arap", "-o", out, check_code=1)
-        self.assertIn("field deviation only", p.stderr)
+        # The message names the flags (it said "the exact strict minimizer is for field deviation only").
+        self.assertIn("--method exact (the exact strict minimizer) is for --measure fd only", p.stderr)
         self.assertFalse(os.path.exists(out))
+
+    def test_exact_size_limit_names_its_flag(self):
+        # The limit is --exact-max-elements: the message only said "use --method direct or relax".
+        p = run("deform", "--example", "square", "--method", "exact", "--exact-max-elements", "10", check_code=1)
+        self.assertIn("800 elements is above its limit of 10 (--exact-max-elements;", p.stderr)
 
     def test_failed_run_leaves_no_output(self):
         out = os.path.join(self.dir, "never.obj")
@@ -297,6 +303,10 @@ class Eval(unittest.TestCase):
         self.assertEqual(s["measure"], "arap")
         self.assertEqual(s["map_kind"], "parametrization")
         self.assertAlmostEqual(s["max_distortion"], math.sqrt(0.5), places=12)
+        self.assertEqual(s["output"], "", "no -o")
+        written = os.path.join(self.dir, "measured.ply")
+        s = json.loads(run("eval", obj, "-o", written, "--summary", "-", "-q", check_code=0).stdout)
+        self.assertEqual(s["output"], written, "the -o mesh (eval's summary had no output key)")
         s = json.loads(run("eval", obj, "--measure", "asap", "--summary", "-", "-q", check_code=0).stdout)
         self.assertAlmostEqual(s["max_distortion"], 0.0, places=12)
         self.assertTrue(s["usable"])

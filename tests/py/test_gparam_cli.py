@@ -157,6 +157,19 @@ class GParam(unittest.TestCase):
         report = self.out("side")
         run("report", report, *summaries, "--quiet", check_code=0)
         self.assertTrue(os.path.exists(os.path.join(report, "index.html")))
+        self.assert_field_deviation_from_the_field(os.path.join(report, "index.html"))
+
+    def assert_field_deviation_from_the_field(self, page):
+        """gparam's fd is ||J - R|| against the cross field's frames: its reports said ||J - I||."""
+        with open(page, encoding="utf-8") as f:
+            html = f.read()
+        self.assertNotIn("\u2016J \u2212 I\u2016", html)
+        self.assertIn("\u2016J \u2212 R\u2016 from the cross field's frames", html.replace("&#39;", "'"))
+
+    def test_report_names_the_fields_frames(self):
+        report = self.out("one")
+        run("gparam", self.cube, "--method", "l2", "--report", report, "--quiet", check_code=0)
+        self.assert_field_deviation_from_the_field(os.path.join(report, "index.html"))
 
     def test_curvature_field(self):
         s = self.gparam(self.cube, "--field", "curvature")

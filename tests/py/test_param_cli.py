@@ -106,11 +106,30 @@ class Param(unittest.TestCase):
         self.assertIn("use tutte, lscm, l2, lp, irls or linf", run("param", self.cap, "--init", "x", check_code=1).stderr)
         self.assertIn("--init TEXT=tutte", run("param", "--help", check_code=0).stdout)
 
+    def test_init_contradicting_the_start_method_is_refused(self):
+        """--method tutte is Tutte's map itself: --init lscm beside it was silently dropped."""
+        out = os.path.join(self.dir, "never.obj")
+        for method, init in (("tutte", "lscm"), ("lscm", "tutte")):
+            err = run("param", self.cap, "--method", method, "--init", init, "-o", out, check_code=1).stderr
+            self.assertIn(f"--init {init} contradicts --method {method}", err)
+            self.assertFalse(os.path.exists(out))
+        for method in ("tutte", "lscm"):  # the same map twice is no contradiction
+            run("param", self.cap, "--method", method, "--init", method, "--quiet", check_code=0)
+
     def test_report(self):
         rep = os.path.join(self.dir, "rep")
         run("param", self.cap, "--method", "l2", "--report", rep, "--quiet", check_code=0)
         self.assertTrue(os.path.exists(os.path.join(rep, "index.html")))
         self.assertTrue(os.path.exists(os.path.join(rep, "summary.json")))
+
+    def test_fd_report_names_the_starting_maps_rotations(self):
+        """param's fd is ||J - R|| against the starting map's rotations: its report said ||J - I||."""
+        rep = os.path.join(self.dir, "rep_fd")
+        run("param", self.cap, "--measure", "fd", "--method", "l2", "--report", rep, "--quiet", check_code=0)
+        with open(os.path.join(rep, "index.html"), encoding="utf-8") as f:
+            html = f.read().replace("&#39;", "'")
+        self.assertNotIn("\u2016J \u2212 I\u2016", html)
+        self.assertIn("\u2016J \u2212 R\u2016 from the starting map's rotations", html)
 
 
 if __name__ == "__main__":

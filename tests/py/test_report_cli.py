@@ -74,6 +74,21 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_report_of_the_demos_results(self):
+        """docs/report.md: the demo writes each result's summary, map and distortion for
+        `strictmin report`; its param and gparam summaries (inputs example:spherical-cap and
+        example:bulged-frame) were refused as unknown examples (exit 1)."""
+        demo = os.path.join(self.dir, "demo")
+        run("demo", "--out", demo, "--quiet", check_code=0)
+        for section in ("square", "param", "gparam"):
+            summaries = [os.path.join(demo, section, f"{m}.json") for m in ("l2", "linf", "relax")]
+            out = os.path.join(self.dir, "again_" + section)
+            run("report", out, *summaries, "--quiet", check_code=0)
+            html = self.check_folder(out)
+            self.assertIn("3 results for input example:", html)
+            self.assertTrue(any(name.startswith("input.") for _, _, files in os.walk(out) for name in files),
+                            section + ": the rest surface is drawn")
+
     def test_a_report_into_an_earlier_ones_folder_removes_its_stale_files(self):
         # The pictures of a run no longer in the report stayed beside the new index.html.
         for method in ("l2", "linf"):
@@ -179,6 +194,8 @@ class Report(unittest.TestCase):
         for key, value, needle in (("lower_bound", 0.7, "is above the map's own maximum"),
                                    ("elements", 999, "elements 999 disagrees with sq.obj, which has 800"),
                                    ("flipped", 5000, "flipped 5000 is not a count"),
+                                   # a count the map does not have (was shown as "7 of 800")
+                                   ("flipped", 7, "flipped 7 disagrees with sq.obj, which has 0 flipped elements"),
                                    ("max_distortion", 0.5, "max_distortion 0.5 disagrees with sq.txt"),
                                    ("measure", "qc", "a qc distortion is at least 1")):
             edited = dict(summary, **{key: value})

@@ -136,6 +136,36 @@ def test_options(square):
         strictmin.param(np.column_stack([V, 0 * V[:, 0]]), F, method="relax", relax_init="direct")
 
 
+def test_small_bad_values_are_quoted_as_given(square):
+    """A value out of range by a little is quoted with its digits: these messages printed
+    -1e-12 as "-0.000000" (std::to_string's fixed six decimals)."""
+    V, F, idx, pos = square
+    surface = np.column_stack([V, 0.1 * V[:, 0] * V[:, 1]])
+    with pytest.raises(ValueError, match=r"accept_tolerance must be in \[0, 1\) \(got -1e-09\)"):
+        strictmin.deform(V, F, idx, pos, method="relax", accept_tolerance=-1e-9)
+    with pytest.raises(ValueError, match=r"lg_tolerance must be >= 0 \(got -1e-09\)"):
+        strictmin.deform(V, F, idx, pos, measure="arap", lg_tolerance=-1e-9)
+    with pytest.raises(ValueError, match=r"target_extrapolation must be in \[0, 1\] \(got 1.0000001\)"):
+        strictmin.param(surface, F, lg_extrapolation=1.0000001)
+    with pytest.raises(ValueError, match=r"edge_length must be a positive finite number, got -1e-12$"):
+        strictmin.gparam(V, F, edge_length=-1e-12)
+    with pytest.raises(ValueError, match=r"curvature_alignment must be a positive number, got -1e-12$"):
+        strictmin.gparam(V, F, field="curvature", curvature_alignment=-1e-12)
+
+
+def test_param_init_contradicting_the_start_method(square):
+    """method="tutte" is Tutte's map itself: init="lscm" beside it was silently dropped."""
+    V, F, _, _ = square
+    surface = np.column_stack([V, 0.1 * V[:, 0] * V[:, 1]])
+    with pytest.raises(ValueError, match="init='lscm' contradicts method='tutte'"):
+        strictmin.param(surface, F, method="tutte", init="lscm")
+    with pytest.raises(ValueError, match="init='tutte' contradicts method='lscm'"):
+        strictmin.param(surface, F, method="lscm", init="tutte")
+    assert strictmin.param(surface, F, method="lscm").summary["init"] == "lscm"
+    assert strictmin.param(surface, F, method="tutte", init="tutte").summary["init"] == "tutte"
+    assert strictmin.param(surface, F, method="l2").summary["init"] == "tutte"
+
+
 def test_tasks(square):
     V, F, idx, pos = square
     surface = np.column_stack([V, V[:, 0] * V[:, 1]])
