@@ -121,15 +121,21 @@ TEST(Problem, TetsAffineMaps) {
   }
 }
 
-TEST(Problem, SurfaceTrianglesGetIsometricFrames) {
-  // A grid bent into 3D by a rigid motion: every local-frame Jacobian of the flattened
-  // (original 2D) positions is a rotation, so ARAP is 0 and areas are preserved.
-  const Mesh flat = make_grid(3, 3);
+// The 3 x 3 grid turned into 3D by a rigid motion (its flat positions are an isometry of it).
+Mesh grid_bent_into_3d(const Mesh& flat) {
   Mesh surface;
   surface.F = flat.F;
   surface.V.resize(flat.V.rows(), 3);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
   for (int v = 0; v < flat.V.rows(); ++v) surface.V.row(v) = (Q * Eigen::Vector3d(flat.V(v, 0), flat.V(v, 1), 0)).transpose();
+  return surface;
+}
+
+TEST(Problem, SurfaceTrianglesGetIsometricFrames) {
+  // A grid bent into 3D by a rigid motion: every local-frame Jacobian of the flattened
+  // (original 2D) positions is a rotation, so ARAP is 0 and areas are preserved.
+  const Mesh flat = make_grid(3, 3);
+  const Mesh surface = grid_bent_into_3d(flat);
   const Problem p = make_problem(surface);
   EXPECT_EQ(p.image_dim, 2);
   EXPECT_NEAR(p.weights.sum(), 1.0, 1e-13);
@@ -146,11 +152,7 @@ TEST(Problem, SurfaceTrianglesGetIsometricFrames) {
 // scaled by an exact power of two; ordinary ones exactly as before.
 TEST(Problem, SurfaceFramesAtEverySize) {
   const Mesh flat = make_grid(3, 3);
-  Mesh surface;
-  surface.F = flat.F;
-  surface.V.resize(flat.V.rows(), 3);
-  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
-  for (int v = 0; v < flat.V.rows(); ++v) surface.V.row(v) = (Q * Eigen::Vector3d(flat.V(v, 0), flat.V(v, 1), 0)).transpose();
+  const Mesh surface = grid_bent_into_3d(flat);
   const Problem unit = make_problem(surface);
   for (const double scale : {1e60, 1e120, 1e-60, 1e-120}) {
     Mesh scaled = surface;
