@@ -233,9 +233,10 @@ def write_mesh(path, V, F, uv=None, quality=None):
 
 def deform(V, F, handle_indices, handle_positions, method="linf", measure="fd", *, progress=None, verbose=False,
            **options):
-    """Deform a planar triangle mesh or a tet mesh so that the handle vertices reach their
-    positions with the least distortion (method: l2, linf, relax, direct, exact, lp, irls;
-    measure: fd, arap, asap). Options: the command line's flags with underscores
+    """Deform a planar triangle mesh, a triangle surface in 3D or a tet mesh so that the handle
+    vertices reach their positions with the least distortion (method: l2, linf, relax, direct,
+    exact, lp, irls; measure: fd, arap, asap, and qc or iso on planar triangles; docs/python.md).
+    Options: the command line's flags with underscores
     (gap, max_iterations, sweeps, delta_k, k_min, lg_iterations, start, threads, ...).
     Returns a Result with ``positions``."""
     V = _vertices(V)
