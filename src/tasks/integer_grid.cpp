@@ -135,13 +135,17 @@ std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eige
       const size_t tries = take == 1 ? choices[0].size() : 1;
       for (size_t t = 0; t < tries && !placed; ++t) {
         const Problem before = problem;
+        double largest_move = 0;  // this try's, per coordinate, in grid units
         for (size_t j = 0; j < take; ++j) {
           const int i = std::get<2>(order[j]);
-          hold(i, take == 1 ? choices[0][t] : nearest_grid_point(value(i, X)));
+          const Eigen::Vector2d point = take == 1 ? choices[0][t] : nearest_grid_point(value(i, X));
+          largest_move = std::max(largest_move, (point - value(i, X)).cwiseAbs().maxCoeff());
+          hold(i, point);
           done(i, true);
         }
         if (std::optional<Eigen::MatrixXd> next = solve()) {
           X = std::move(*next);
+          largest_rounding = std::max(largest_rounding, largest_move);
           placed = true;
           break;
         }
@@ -157,11 +161,7 @@ std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eige
       take = (take + 1) / 2;
     }
     pending.clear();
-    for (size_t j = 0; j < order.size(); ++j)
-      if (j >= take)
-        pending.push_back(std::get<2>(order[j]));
-      else if (placed)
-        largest_rounding = std::max(largest_rounding, std::get<1>(order[j]));
+    for (size_t j = take; j < order.size(); ++j) pending.push_back(std::get<2>(order[j]));
   }
   return off_grid;
 }
