@@ -63,8 +63,8 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                    " seam edges (dark red), seam error " + shown_number(g.seam_error, 2) + "." +
                    (summary.value("integer_grid", false)
                         ? " Integer-grid map: singular vertices and seam translations rounded to the grid (" +
-                              std::to_string(g.rounding.singularities - g.rounding.singularities_off_grid) + " and " +
-                              std::to_string(g.rounding.translations - g.rounding.translations_off_grid) +
+                              std::to_string(g.rounding.singularities) + " and " +
+                              std::to_string(g.rounding.translations) +
                               "), off it by at most " + shown_number(g.integer_error, 2) + " grid units."
                         : std::string());
   describe_measure(in, summary.value("measure", std::string("fd")), "gparam");

@@ -26,9 +26,7 @@ void add_report_options(CLI::App& cmd, ReportArgs& a) {
 
 namespace {
 constexpr double kNoBound = std::numeric_limits<double>::quiet_NaN();
-}
 
-namespace {
 // qc, iso >= 1: reports show their excess over 1 (the pictures' scale starts at 1, blue =
 // undistorted), and their cards say so (describe_measure).
 bool shown_as_excess(Measure measure) { return measure == Measure::Quasiconformal || measure == Measure::Isometric; }

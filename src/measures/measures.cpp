@@ -91,6 +91,12 @@ Eigen::MatrixXd closest_similarity(const Eigen::MatrixXd& J) {
   return s * Q;
 }
 
+namespace {
+// From a square J's signed singular values (the last one negative when det J < 0): flipped,
+// or collapsed (the smallest at most kCollapsedRatio times the largest).
+bool flipped_or_collapsed(const Eigen::VectorXd& s) { return s(s.size() - 1) <= kCollapsedRatio * s(0); }
+}  // namespace
+
 double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   switch (m) {
@@ -109,7 +115,7 @@ double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
     case Measure::Quasiconformal: {
       const Eigen::VectorXd s = signed_singular_values(J);
       const double smin = s(s.size() - 1);
-      if (J.rows() == J.cols() && (smin <= 0 || is_flipped(J))) return inf;  // flipped or collapsed
+      if (J.rows() == J.cols() && flipped_or_collapsed(s)) return inf;
       return smin > 0 ? s(0) / smin : inf;
     }
     case Measure::Isometric: {
@@ -123,9 +129,7 @@ double distortion(Measure m, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
 }
 
 bool is_flipped(const Eigen::MatrixXd& J) {
-  if (J.rows() != J.cols()) return false;
-  const Eigen::VectorXd s = signed_singular_values(J);  // the last one negative when det J < 0
-  return s(s.size() - 1) <= kCollapsedRatio * s(0);
+  return J.rows() == J.cols() && flipped_or_collapsed(signed_singular_values(J));
 }
 
 }  // namespace strictmin

@@ -17,16 +17,21 @@ inline double frame_edge_scale(const Eigen::Vector3d& e1, const Eigen::Vector3d&
   return std::exp2(-std::round(std::log2(size)));
 }
 
-// The triangle's frame axes: x along its first edge e1 = p1 - p0, y in its plane,
-// orthogonal to x, on the side of e2 = p2 - p0 (as columns).
-inline Eigen::Matrix<double, 3, 2> frame_axes(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                                              const Eigen::Vector3d& p2) {
-  const double s = frame_edge_scale(p1 - p0, p2 - p0);
-  const Eigen::Vector3d e1 = (p1 - p0) * s, e2 = (p2 - p0) * s;
+// The frame axes of a triangle with edges e1 and e2 from its first corner, already scaled
+// by frame_edge_scale: x along e1, y in the plane, orthogonal to x, on the side of e2 (as
+// columns).
+inline Eigen::Matrix<double, 3, 2> frame_axes_of_edges(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
   Eigen::Matrix<double, 3, 2> axes;
   axes.col(0) = e1.normalized();
   axes.col(1) = (e1.cross(e2)).cross(e1).normalized();
   return axes;
+}
+
+// The triangle's frame axes (e1 = p1 - p0, e2 = p2 - p0).
+inline Eigen::Matrix<double, 3, 2> frame_axes(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                              const Eigen::Vector3d& p2) {
+  const double s = frame_edge_scale(p1 - p0, p2 - p0);
+  return frame_axes_of_edges((p1 - p0) * s, (p2 - p0) * s);
 }
 
 }  // namespace strictmin

@@ -109,7 +109,7 @@ Eigen::Matrix<double, 3, 2> local_frame_coordinates(const Eigen::Vector3d& p0, c
   // Edges far from unit length are measured scaled by an exact power of two (frame_axes.h).
   const double s = frame_edge_scale(p1 - p0, p2 - p0);
   const Eigen::Vector3d e1 = (p1 - p0) * s, e2 = (p2 - p0) * s;
-  const Eigen::Matrix<double, 3, 2> axes = frame_axes(p0, p1, p2);  // x along e1, y in-plane
+  const Eigen::Matrix<double, 3, 2> axes = frame_axes_of_edges(e1, e2);  // x along e1, y in-plane
   Eigen::Matrix<double, 3, 2> P;
   P << 0.0, 0.0, e1.norm(), 0.0, e2.dot(axes.col(0)), e2.dot(axes.col(1));
   return P / s;

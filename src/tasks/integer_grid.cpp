@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <tuple>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
@@ -114,30 +113,30 @@ std::vector<Eigen::Vector2d> grid_points_around(const Eigen::Vector2d& v) {
 // `hold(i, point)` rounds item i to the grid point in `problem`, and `solve` returns the L2
 // map after the step, or nothing when the step is a dead end (its equalities contradict each
 // other, or they fix a value not rounded yet off the grid). A step rounds the nearest
-// kStepShare of the values left, the `first` ones before any other; values rounded together
+// kStepShare of the values left; values rounded together
 // can contradict (three free translations around one node, 0.4 + 0.4 - 0.8 = 0, round to
 // 0 + 0 - 1), so a step that fails is undone and tried again with half as many; a value
 // alone tries the four grid points around it. One that still fails is left to the others
 // off the grid, and returned.
-template <class Value, class Hold, class Solve, class First, class Done>
+template <class Value, class Hold, class Solve, class Done>
 std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eigen::MatrixXd& X, Value value, Hold hold,
-                                Solve solve, First first, Done done, double& largest_rounding) {
+                                Solve solve, Done done, double& largest_rounding) {
   std::vector<int> off_grid;
   while (!pending.empty()) {
-    std::vector<std::tuple<bool, double, int>> order;
-    for (int i : pending) order.emplace_back(!first(i), grid_distance(value(i, X)), i);
+    std::vector<std::pair<double, int>> order;
+    for (int i : pending) order.emplace_back(grid_distance(value(i, X)), i);
     std::sort(order.begin(), order.end());
     size_t take = std::max<size_t>(1, static_cast<size_t>(std::ceil(kStepShare * order.size())));
     bool placed = false;
     while (!placed) {
       std::vector<std::vector<Eigen::Vector2d>> choices(1);
-      if (take == 1) choices = {grid_points_around(value(std::get<2>(order[0]), X))};
+      if (take == 1) choices = {grid_points_around(value(order[0].second, X))};
       const size_t tries = take == 1 ? choices[0].size() : 1;
       for (size_t t = 0; t < tries && !placed; ++t) {
         const Problem before = problem;
         double largest_move = 0;  // this try's, per coordinate, in grid units
         for (size_t j = 0; j < take; ++j) {
-          const int i = std::get<2>(order[j]);
+          const int i = order[j].second;
           const Eigen::Vector2d point = take == 1 ? choices[0][t] : nearest_grid_point(value(i, X));
           largest_move = std::max(largest_move, (point - value(i, X)).cwiseAbs().maxCoeff());
           hold(i, point);
@@ -150,18 +149,18 @@ std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eige
           break;
         }
         problem = before;
-        for (size_t j = 0; j < take; ++j) done(std::get<2>(order[j]), false);
+        for (size_t j = 0; j < take; ++j) done(order[j].second, false);
       }
       if (placed) break;
       if (take == 1) {
-        off_grid.push_back(std::get<2>(order[0]));
-        done(std::get<2>(order[0]), true);  // left to the others: not rounded again
+        off_grid.push_back(order[0].second);
+        done(order[0].second, true);  // left to the others: not rounded again
         break;
       }
       take = (take + 1) / 2;
     }
     pending.clear();
-    for (size_t j = take; j < order.size(); ++j) pending.push_back(std::get<2>(order[j]));
+    for (size_t j = take; j < order.size(); ++j) pending.push_back(order[j].second);
   }
   return off_grid;
 }
@@ -220,30 +219,29 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   const std::vector<int> off_grid_singular = round_greedily(
       pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
       [&](int i, const Eigen::Vector2d& point) { problem.fix({Handle{values.wedges[i], h * point}}); }, solve,
-      [](int) { return false; }, [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
+      [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
   out.singularities_off_grid = static_cast<int>(off_grid_singular.size());
+  out.singularities -= out.singularities_off_grid;
   for (int i : off_grid_singular) problem.fixed[values.wedges[i]] = 0;
 
-  // 2. The branch translations. A branch from a node back to itself (a loop of the cut) enters
-  // its node's relation twice, with a coefficient such as I - R (determinant 2): loops go
-  // first, while the other branches at their nodes can still take up their parity.
+  // 2. The branch translations.
   pending.clear();
   for (size_t i = 0; i < values.ends.size(); ++i) pending.push_back(static_cast<int>(i));
   out.translations = static_cast<int>(pending.size());
   step = "with the seam translations rounded";
-  auto is_loop = [&](int i) { return cut.branches[i].vertices.front() == cut.branches[i].vertices.back(); };
   const std::vector<int> off_grid_translations = round_greedily(
       pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
       [&](int i, const Eigen::Vector2d& point) { add_translation_rows(problem, values.ends[i], h * point); }, solve,
-      is_loop, [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
+      [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
   out.translations_off_grid = static_cast<int>(off_grid_translations.size());
+  out.translations -= out.translations_off_grid;
   out.time_s = seconds_since(t0);
   if (progress) {
     char line[260];
     std::snprintf(line, sizeof line,
                   "integer grid: %d singular vertices and %d seam translations rounded (largest move %.3g grid "
                   "units; %d and %d left off the grid), %d L2 solves (%d steps tried again), %.3f s",
-                  out.singularities - out.singularities_off_grid, out.translations - out.translations_off_grid,
+                  out.singularities, out.translations,
                   out.largest_rounding, out.singularities_off_grid, out.translations_off_grid, out.solves,
                   out.retried_steps, out.time_s);
     progress(line);

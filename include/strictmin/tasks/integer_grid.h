@@ -41,7 +41,7 @@ namespace strictmin {
 
 struct IntegerGridRounding {
   int singularities = 0;       // singular vertices held at integer points (wedge 0's excepted)
-  int translations = 0;        // branches given an integer translation
+  int translations = 0;        // branches given an integer translation (the off-grid ones not counted)
   int solves = 0;              // L2 solves between the rounding steps
   int retried_steps = 0;       // steps whose values contradicted each other, tried again with half
   // Values the others fix off the grid (each alone contradicted them): left unrounded, so
