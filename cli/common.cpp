@@ -21,7 +21,7 @@ namespace strictmin::cli {
 
 void add_output_options(CLI::App& cmd, OutputOptions& out) {
   cmd.add_option("--summary", out.summary, "Write a JSON summary to FILE ('-' for stdout)")->type_name("FILE");
-  cmd.add_option("--distortion", out.distortion, "Write each element's distortion to FILE, one per line, input order")
+  cmd.add_option("--distortion", out.distortion, "Write each element's distortion to FILE, one per line, input order ('-' for stdout)")
       ->type_name("FILE");
   cmd.add_flag("--quiet,-q", out.quiet, "No progress messages on stderr");
   cmd.add_option("--threads", out.threads, "Number of threads (default 0: all cores)")->check(at_least(0));
@@ -76,14 +76,18 @@ std::shared_ptr<void> limit_threads(int threads) {
 }
 
 void write_outputs(const OutputOptions& out, const nlohmann::json& summary, const Eigen::VectorXd& distortion) {
-  if (!out.distortion.empty()) {
-    write_file_atomically(out.distortion, [&](std::ostream& os) {
-      char buf[64];
-      for (Eigen::Index i = 0; i < distortion.size(); ++i) {
-        std::snprintf(buf, sizeof buf, "%.17g\n", distortion(i));
-        os << buf;
-      }
-    });
+  const auto write_distortions = [&](std::ostream& os) {
+    char buf[64];
+    for (Eigen::Index i = 0; i < distortion.size(); ++i) {
+      std::snprintf(buf, sizeof buf, "%.17g\n", distortion(i));
+      os << buf;
+    }
+  };
+  if (out.distortion == "-") {
+    write_distortions(std::cout);
+    std::cout.flush();
+  } else if (!out.distortion.empty()) {
+    write_file_atomically(out.distortion, write_distortions);
   }
   if (out.summary.empty()) return;
   nlohmann::json s = summary;
@@ -189,6 +193,8 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
   std::vector<std::pair<std::string, std::string>> all = task_outputs;
   all.push_back({"--summary", out.summary});
   all.push_back({"--distortion", out.distortion});
+  if (out.summary == "-" && out.distortion == "-")
+    throw InputError("--summary - and --distortion - would both write to stdout; give one of them a file name");
   check_output_paths(all);
   for (const auto& [flag, path] : task_outputs) {  // a mesh output's format, known before the solve
     if (flag != "--output" || path.empty()) continue;

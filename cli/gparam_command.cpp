@@ -25,7 +25,7 @@ struct GParamArgs {
   std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
-  bool edge_length_given = false, quads_given = false, parallel = false, integer_grid = false;
+  bool edge_length_given = false, quads_given = false, curvature_alignment_given = false, parallel = false, integer_grid = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start
@@ -50,6 +50,9 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (a.edge_length_given) o.edge_length = a.edge_length;
   if (a.quads_given) o.quads = a.quads;
   o.curvature_field = a.field == "curvature";
+  if (a.curvature_alignment_given && !o.curvature_field)
+    throw InputError("--curvature-alignment applies to --field curvature only (the field is " +
+                     (a.cones.empty() ? a.field : std::string("from --cones")) + ")");
   o.field_options.unit = a.field == "unit";
   if (!(a.curvature_alignment > 0 && std::isfinite(a.curvature_alignment)))
     throw InputError("--curvature-alignment must be a positive number, got " + shown_number(a.curvature_alignment));
@@ -164,6 +167,7 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->callback([args, cmd, &exit_code] {
     args->edge_length_given = cmd->count("--edge-length") > 0;
     args->quads_given = cmd->count("--quads") > 0;
+    args->curvature_alignment_given = cmd->count("--curvature-alignment") > 0;
     exit_code = run_gparam(*args);
   });
 }

@@ -268,7 +268,9 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   if (r.rest) check_summary_flips(s, file, *r.rest, r.run.mapped, r.input, mapped_path);
 
   const std::string measure_text = text("measure").empty() ? "fd" : text("measure");
-  const std::string distortion_path = resolve(text("distortion_file"), file);
+  // "-": the task wrote its distortions to stdout, so there is no file to read.
+  const std::string distortion_name = text("distortion_file") == "-" ? std::string() : text("distortion_file");
+  const std::string distortion_path = resolve(distortion_name, file);
   if (!distortion_path.empty()) {
     r.run.distortion = read_distortion_file(distortion_path, elements);
     check_summary_figures(s, file, distortion_path, r.run.distortion, measure_text);
@@ -344,9 +346,26 @@ std::string section_title(const LoadedRun& run, const std::vector<LoadedRun>& al
   return title + " (" + what + ")";
 }
 
+// One summary given twice would be compared with itself as if it were two runs.
+void refuse_repeated_summaries(const std::vector<std::string>& files) {
+  std::vector<fs::path> seen;
+  for (const auto& f : files) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(fs::absolute(f, ec), ec);
+    if (ec) key = fs::absolute(f).lexically_normal();
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+      std::error_code same_ec;
+      if (seen[i] == key || (fs::equivalent(seen[i], key, same_ec) && !same_ec))
+        throw InputError(f + ": this summary is given twice (also as " + files[i] + ")");
+    }
+    seen.push_back(key);
+  }
+}
+
 int run_report(ReportCommandArgs a) {
   a.runs.insert(a.runs.end(), a.positional.begin(), a.positional.end());
   if (a.runs.empty()) throw InputError("report needs at least one result: --run SUMMARY.json (written by --summary)");
+  refuse_repeated_summaries(a.runs);
   std::vector<LoadedRun> loaded;
   for (const auto& f : a.runs) loaded.push_back(load_run(f, a.out));
 

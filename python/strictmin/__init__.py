@@ -266,13 +266,14 @@ def param(V, F, method="linf", measure="arap", init=None, *, progress=None, verb
                                    _progress(progress, verbose)))
 
 
-def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=0.01,
+def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=None,
            parallel=False, cones=None, integer_grid=False, progress=None, verbose=False, **options):
     """Globally parametrize a closed manifold triangle surface (one component, any genus)
     guided by a cross field, with seams as linear constraints (the paper's Appendix A;
     docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
     field) or arap; field: None or "smoothest", "unit" (the smoothest field lowered among unit fields),
-    "curvature", or #F by 3 directions; parallel: keep the field's singularities and make it
+    "curvature" (curvature_alignment, default 0.01, says how closely it follows the principal
+    directions), or #F by 3 directions; parallel: keep the field's singularities and make it
     parallel between them (the CLI's --parallel); cones: #V integers, each vertex's index in
     quarters (the field with exactly these cones, the CLI's --cones; instead of field);
     edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
@@ -306,7 +307,13 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
         quads = int(quads)
         if not -2**31 <= quads < 2**31:
             raise ValueError(f"quads: {quads} is out of range")
-    curvature_alignment = _real_number(curvature_alignment, "curvature_alignment")
+    if curvature_alignment is None:
+        curvature_alignment = 0.01
+    elif field != "curvature":
+        raise ValueError(f"curvature_alignment applies to field='curvature' only (the field is "
+                         f"{'from cones' if cones is not None else repr(field)})")
+    else:
+        curvature_alignment = _real_number(curvature_alignment, "curvature_alignment")
     if not isinstance(parallel, bool):
         raise TypeError("parallel must be True or False")
     if not isinstance(integer_grid, bool):

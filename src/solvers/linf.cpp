@@ -316,7 +316,9 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   if (warm) keep_dual(mp, ms, *warm);  // the next solve's warm start, unless this one failed
   const BestSoFar& best = ms.best;
   result.iterations += ms.outcome.iterations;
-  result.lower_bound = std::min(best.lower_bound, best.k);
+  // Every distortion is a norm, so 0 bounds the optimum too (a dual bound of -4e-30 on a map
+  // of zero distortion is round-off).
+  result.lower_bound = std::max(0.0, std::min(best.lower_bound, best.k));
   if (best.element_multipliers.size() == E) {
     result.multipliers = best.element_multipliers;
   } else if (best.multipliers.size() > 0) {

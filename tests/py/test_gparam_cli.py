@@ -296,6 +296,9 @@ class GParam(unittest.TestCase):
         self.expect_bad([self.cube, "--edge-length", "-1"], ["--edge-length"])
         self.expect_bad([self.cube, "--quads", "0"], ["--quads"])
         self.expect_bad([self.cube, "--field", "curvature", "--curvature-alignment", "0"], ["--curvature-alignment"])
+        # The alignment belongs to the curvature field: elsewhere it would be ignored in silence.
+        self.expect_bad([self.cube, "--curvature-alignment", "0.5"], ["--curvature-alignment", "--field curvature"])
+        self.expect_bad([self.cube, "--field", "unit", "--curvature-alignment", "0.5"], ["the field is unit"])
         self.expect_bad([self.cube, "--measure", "qc"], ["--measure"])
         self.expect_bad([self.cube, "--field", self.out("missing.txt")], ["missing.txt"])
         field = self.out("f.txt")

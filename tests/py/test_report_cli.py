@@ -176,6 +176,9 @@ class Report(unittest.TestCase):
         for m in ("l2", "linf"):
             run("deform", "g.obj", "--handles", "h.txt", "--method", m, "-o", f"{m}.obj", "--distortion", f"{m}.txt",
                 "--summary", f"{m}.json", "--quiet", cwd=self.dir)
+        # Distortions are norms: the certified bound of a map of zero distortion is 0, not -4e-30.
+        with open(os.path.join(self.dir, "linf.json")) as f:
+            self.assertGreaterEqual(json.load(f)["lower_bound"], 0.0)
         run("report", "z", "l2.json", "linf.json", cwd=self.dir)
         html = read(os.path.join(self.dir, "z", "index.html"))
         self.assertIn("no distortion (maximum", html)
@@ -244,6 +247,27 @@ class Report(unittest.TestCase):
         self.assertIn("run the task with --distortion FILE", p.stderr)
         p = run("report", "out3", "ply.json", cwd=self.dir, check_code=1)
         self.assertIn("'.ply' is written by the tasks but not read back", p.stderr)
+        # One summary twice, under any name, would be compared with itself.
+        with open(os.path.join(self.dir, "l2.txt"), "w") as f:
+            f.write("\n".join(lines))
+        for twice in (["l2.json", "l2.json"], ["l2.json", "./l2.json"], ["l2.json", os.path.join(self.dir, "l2.json")]):
+            p = run("report", "out5", *twice, cwd=self.dir, check_code=1)
+            self.assertIn("this summary is given twice", p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "out5")))
+        # A distortion written to stdout ('-') names no file to read: the report says so, as
+        # for a run without --distortion.
+        p = run("deform", "--example", "square", "--method", "l2", "-o", "d.obj", "--distortion", "-", "--summary",
+                "d.json", "--quiet", cwd=self.dir, check_code=0)
+        values = [float(x) for x in p.stdout.split()]
+        with open(os.path.join(self.dir, "d.json")) as f:
+            s = json.load(f)
+        self.assertEqual(len(values), s["elements"])
+        self.assertAlmostEqual(max(values), s["max_distortion"], places=12)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "-")))
+        p = run("report", "out6", "d.json", cwd=self.dir, check_code=0)
+        self.assertIn("no distortion_file", p.stderr)
+        p = run("deform", "--example", "square", "--distortion", "-", "--summary", "-", cwd=self.dir, check_code=1)
+        self.assertIn("both write to stdout", p.stderr)
 
 
 if __name__ == "__main__":

@@ -253,7 +253,7 @@ def test_wrong_types_name_the_argument(square, tmp_path):
          "quality must hold real numbers, not str"),
         (lambda: strictmin.write_mesh(3, V, F), "write_mesh: path must be a str or os.PathLike, not int"),
         (lambda: strictmin.gparam(V, F, edge_length=1j), "edge_length must be a real number, not complex"),
-        (lambda: strictmin.gparam(V, F, curvature_alignment="0.1"), "curvature_alignment must be a real number, not str"),
+        (lambda: strictmin.gparam(V, F, field="curvature", curvature_alignment="0.1"), "curvature_alignment must be a real number, not str"),
     ]
     for call, message in cases:
         with pytest.raises(TypeError, match=message):

@@ -137,6 +137,11 @@ def test_bad_input(closed):
         strictmin.gparam(V, F, field=zero)
     with pytest.raises(ValueError, match="curvature_alignment"):
         strictmin.gparam(V, F, field="curvature", curvature_alignment=0)
+    # Only the curvature field has an alignment: elsewhere it would be ignored in silence.
+    with pytest.raises(ValueError, match=r"curvature_alignment applies to field='curvature' only \(the field is 'unit'\)"):
+        strictmin.gparam(V, F, field="unit", curvature_alignment=0.5)
+    with pytest.raises(ValueError, match="the field is from cones"):
+        strictmin.gparam(V, F, cones=np.zeros(len(V), dtype=int), curvature_alignment=0.5)
     with pytest.raises(ValueError, match="gap"):
         strictmin.gparam(V, F, method="linf", gap=2.0)
     with pytest.raises(TypeError, match="unexpected keyword argument 'pin'"):
