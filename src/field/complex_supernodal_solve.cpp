@@ -206,4 +206,42 @@ void compact_solve(const CompactFactor& L, std::complex<double>* xc) {
 }
 #endif
 
+STRICTMIN_VECTOR_CLONES
+void compact_solve_many(const CompactFactor& L, std::complex<double>* xc, int k) {
+  double* x = reinterpret_cast<double*>(xc);
+  const double* v = reinterpret_cast<const double*>(L.value.data());
+  const int* row = L.row.data();
+  const int n = static_cast<int>(L.inverse_diagonal.size());
+  const long w = 2L * k;  // doubles per row of x
+  // Forward: x_j /= L_jj, then x_i -= L_ij x_j below it, for every right-hand side.
+  for (int j = 0; j < n; ++j) {
+    double* xj = x + w * j;
+    const double d = L.inverse_diagonal[j];
+    for (long r = 0; r < w; ++r) xj[r] *= d;
+    for (int e = L.start[j]; e < L.start[j + 1]; ++e) {
+      const double p = v[2 * e], q = v[2 * e + 1];
+      double* xi = x + w * row[e];
+      for (int r = 0; r < k; ++r) {
+        const double a = xj[2 * r], b = xj[2 * r + 1];
+        xi[2 * r] -= p * a - q * b;
+        xi[2 * r + 1] -= p * b + q * a;
+      }
+    }
+  }
+  // Backward: x_j = (x_j - sum_i conj(L_ij) x_i) / L_jj.
+  for (int j = n - 1; j >= 0; --j) {
+    double* xj = x + w * j;
+    for (int e = L.start[j]; e < L.start[j + 1]; ++e) {
+      const double p = v[2 * e], q = v[2 * e + 1];
+      const double* xi = x + w * row[e];
+      for (int r = 0; r < k; ++r) {
+        xj[2 * r] -= p * xi[2 * r] + q * xi[2 * r + 1];
+        xj[2 * r + 1] -= p * xi[2 * r + 1] - q * xi[2 * r];
+      }
+    }
+    const double d = L.inverse_diagonal[j];
+    for (long r = 0; r < w; ++r) xj[r] *= d;
+  }
+}
+
 }  // namespace strictmin

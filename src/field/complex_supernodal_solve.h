@@ -38,4 +38,8 @@ CompactFactor compact_factor(const cholmod_factor& L);
 // x <- L^{-H} L^{-1} x with the compact factor (no permutation).
 void compact_solve(const CompactFactor& L, std::complex<double>* x);
 
+// The same for k right-hand sides at once, stored by rows (x[i * k + r]: row i of right-hand
+// side r): the factor, which the substitutions stream, is read once for all of them.
+void compact_solve_many(const CompactFactor& L, std::complex<double>* x, int k);
+
 }  // namespace strictmin

@@ -121,6 +121,26 @@ void HermitianCholesky::compact_for_solves() {
   if (impl_->L && supports_complex_supernodal_solve(*impl_->L)) impl_->compact = compact_factor(*impl_->L);
 }
 
+void HermitianCholesky::solve_many_in_place(Eigen::MatrixXcd& B) const {
+  const cholmod_factor* L = impl_->L;
+  const Eigen::Index n = B.rows(), k = B.cols();
+  if (k == 0) return;
+  if (impl_->compact.start.empty() || !L || static_cast<Eigen::Index>(L->n) != n) {
+    for (Eigen::Index c = 0; c < k; ++c) {
+      Eigen::VectorXcd x = B.col(c);
+      solve_in_place(x);
+      B.col(c) = x;
+    }
+    return;
+  }
+  // Rows of P B, each row's k values together (compact_solve_many's layout).
+  const int* perm = static_cast<const int*>(L->Perm);
+  Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Y(n, k);
+  for (Eigen::Index i = 0; i < n; ++i) Y.row(i) = B.row(perm[i]);
+  compact_solve_many(impl_->compact, Y.data(), static_cast<int>(k));
+  for (Eigen::Index i = 0; i < n; ++i) B.row(perm[i]) = Y.row(i);
+}
+
 Eigen::VectorXcd HermitianCholesky::solve(const Eigen::VectorXcd& b) const {
   Eigen::VectorXcd x = b;
   solve_in_place(x);

@@ -39,6 +39,9 @@ class HermitianCholesky {
   Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;
   // x <- A^-1 x, without allocating (a workspace of the factor's: one solve at a time).
   void solve_in_place(Eigen::VectorXcd& x) const;
+  // B <- A^-1 B for several right-hand sides (columns) at once: the factor is read once for
+  // all of them where the compact factor is available (compact_for_solves), else column by column.
+  void solve_many_in_place(Eigen::MatrixXcd& B) const;
 
   double analyze_s = 0, factorize_s = 0;  // wall seconds of the last factorize()
 

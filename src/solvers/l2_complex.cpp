@@ -81,7 +81,7 @@ bool ComplexL2::factorize(const Problem& p, const Eigen::VectorXd& element_weigh
   return cholesky_.factorize(compress(entries(p, basis_, weights_), basis_.num_nodes));
 }
 
-Eigen::MatrixXd ComplexL2::solve(const Problem& p) const {
+Eigen::VectorXcd ComplexL2::reduced_rhs(const Problem& p) const {
   const int c = p.corners(), m = p.domain_dim;
   const ComplexEqualityBasis& z = basis_;
   // b - K z0 per vertex: b_w = sum_T A_T (R_T g_w) as u + iv; K z0 from the fixed vertices.
@@ -102,13 +102,26 @@ Eigen::MatrixXd ComplexL2::solve(const Problem& p) const {
       r(p.elements(e, i)) += weights_(e) * sum;
     }
   }
-  // Z^H r, the solve, z = Z y + z0.
+  // Z^H r.
   Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(z.num_nodes);
   for (int w = 0; w < p.num_vertices; ++w)
     for (int t = z.offset[w]; t < z.offset[w + 1]; ++t) rhs(z.node[t]) += std::conj(z.coefficient[t]) * r(w);
-  const Eigen::VectorXcd y = z.num_nodes > 0 ? cholesky_.solve(rhs) : rhs;
-  Eigen::MatrixXd X(p.num_vertices, 2);
-  for (int w = 0; w < p.num_vertices; ++w) {
+  return rhs;
+}
+
+Eigen::VectorXcd ComplexL2::solve_reduced(const Eigen::VectorXcd& rhs) const {
+  return basis_.num_nodes > 0 ? cholesky_.solve(rhs) : rhs;
+}
+
+void ComplexL2::solve_reduced_many(Eigen::MatrixXcd& rhs) const {
+  if (basis_.num_nodes > 0) cholesky_.solve_many_in_place(rhs);
+}
+
+Eigen::MatrixXd ComplexL2::positions(const Eigen::VectorXcd& y) const {
+  const ComplexEqualityBasis& z = basis_;
+  const Eigen::Index num_vertices = z.z0.size();
+  Eigen::MatrixXd X(num_vertices, 2);
+  for (Eigen::Index w = 0; w < num_vertices; ++w) {
     Complex q = z.z0(w);
     for (int t = z.offset[w]; t < z.offset[w + 1]; ++t) q += z.coefficient[t] * y(z.node[t]);
     X(w, 0) = q.real();
@@ -116,5 +129,7 @@ Eigen::MatrixXd ComplexL2::solve(const Problem& p) const {
   }
   return X;
 }
+
+Eigen::MatrixXd ComplexL2::solve(const Problem& p) const { return positions(solve_reduced(reduced_rhs(p))); }
 
 }  // namespace strictmin

@@ -20,8 +20,18 @@ class ComplexL2 {
   // Assembles Z^H K Z with these element weights and factors it; false when it is not
   // (numerically) positive definite.
   bool factorize(const Problem& p, const Eigen::VectorXd& element_weights);
-  // The minimizer for the problem's targets (#V by 2), after a successful factorize().
+  // The minimizer for the problem's targets (#V by 2), after a successful factorize():
+  // positions(solve_reduced(reduced_rhs(p))).
   Eigen::MatrixXd solve(const Problem& p) const;
+  // The parts of solve(), for solvers that add rows of their own (src/tasks/bordered_l2.h):
+  // Z^H (b - K z0) for p's targets; y = (Z^H K Z)^-1 rhs; the positions z = Z y + z0.
+  Eigen::VectorXcd reduced_rhs(const Problem& p) const;
+  Eigen::VectorXcd solve_reduced(const Eigen::VectorXcd& rhs) const;
+  void solve_reduced_many(Eigen::MatrixXcd& rhs) const;  // column by column, in place
+  Eigen::MatrixXd positions(const Eigen::VectorXcd& y) const;
+  const ComplexEqualityBasis& basis() const { return basis_; }
+  // Before many solve_reduced() calls (HermitianCholesky::compact_for_solves).
+  void prepare_many_solves() { cholesky_.compact_for_solves(); }
   double analyze_s() const { return cholesky_.analyze_s; }
   double factorize_s() const { return cholesky_.factorize_s; }
 

@@ -5,12 +5,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <complex>
+#include <memory>
 #include <optional>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
+#include "tasks/bordered_l2.h"
 
 namespace strictmin {
 namespace {
@@ -22,6 +25,10 @@ constexpr double kStepShare = 0.25;
 // (relative), and on the grid within kOnTheGrid grid units.
 constexpr double kDetermined = 1e-9;
 constexpr double kOnTheGrid = 1e-6;
+
+// The bordered L2 solver's rows contradict each other when they miss by more than this,
+// relative to the map's extent (RoundingState::tolerance).
+constexpr double kRowTolerance = 1e-8;
 
 // The problem with every target moved by a fixed pseudo-random amount (0.3 at most): the
 // values its L2 map shares with the problem's are those its equalities fix.
@@ -77,6 +84,21 @@ struct GridValues {
   double h = 1;
 
   Eigen::Vector2d singular(int i, const Eigen::MatrixXd& X) const { return X.row(wedges[i]).transpose() / h; }
+  // The vertices these values read (the bordered solver's watched ones).
+  std::vector<int> watched() const {
+    std::vector<int> out = wedges;
+    for (const BranchEnds& e : ends) {
+      out.push_back(e.left);
+      out.push_back(e.right);
+    }
+    return out;
+  }
+  // The largest coordinate of X on those vertices.
+  double extent(const Eigen::MatrixXd& X) const {
+    double largest = 0;
+    for (int w : watched()) largest = std::max(largest, X.row(w).cwiseAbs().maxCoeff());
+    return largest;
+  }
   Eigen::Vector2d translation(int i, const Eigen::MatrixXd& X) const {
     const BranchEnds& e = ends[i];
     return (X.row(e.left).transpose() - e.rotation * X.row(e.right).transpose()) / h;
@@ -93,6 +115,74 @@ struct GridValues {
     for (size_t i = 0; i < ends.size(); ++i)
       if (!rounded[i] && off(translation(static_cast<int>(i), X), translation(static_cast<int>(i), Y))) return true;
     return false;
+  }
+};
+
+// What the rounding changes, with snapshots to undo a step: the problem (its fixed vertices
+// and translation rows, for the method that runs after) and, when its equalities have a
+// complex form, the same holds as rows of the bordered L2 solver (tasks/bordered_l2.h),
+// whose solves replace a fresh L2 solve of the problem per step.
+//
+// The bordered solver keeps the seamless problem's anchor (wedge 0 at the origin). The map
+// may be translated as a whole (the free branch translations absorb it: t changes by
+// (I - R) c), so the first singular vertex held, s0 at P0, is reached by translating the
+// solution by c = P0 - z(s0), and every later hold is written in that frame:
+//   singular vertex w held at P:     z_w - z_s0 = P - P0
+//   branch translation rounded to T: z_left - r z_right - (1 - r) z_s0 = T - (1 - r) P0
+// (r: the branch's rotation as a complex number; surface units).
+struct RoundingState {
+  using Complex = std::complex<double>;
+  Problem& problem;
+  std::unique_ptr<BorderedL2> bordered;  // null: solve_l2 on the problem instead
+  double tolerance = 0;                  // how far the bordered rows may miss (contradiction above)
+  int frame_wedge = -1;                  // s0 (-1: none held yet)
+  Complex frame_point;                   // P0
+
+  struct Snapshot {
+    Problem problem;
+    std::size_t rows;
+    int frame_wedge;
+    Complex frame_point;
+  };
+  Snapshot save() const { return {problem, bordered ? bordered->size() : 0, frame_wedge, frame_point}; }
+  void restore(const Snapshot& s) {
+    problem = s.problem;
+    if (bordered) bordered->truncate(s.rows);
+    frame_wedge = s.frame_wedge;
+    frame_point = s.frame_point;
+  }
+
+  void hold_vertex(int w, const Eigen::Vector2d& point) {
+    problem.fix({Handle{w, point}});
+    if (!bordered) return;
+    const Complex P(point.x(), point.y());
+    if (frame_wedge < 0) {
+      frame_wedge = w;
+      frame_point = P;
+      return;
+    }
+    bordered->push({{{w, 1.0}, {frame_wedge, -1.0}}, P - frame_point});
+  }
+  void hold_translation(const BranchEnds& ends, const Eigen::Vector2d& t) {
+    add_translation_rows(problem, ends, t);
+    if (!bordered) return;
+    const Complex r(ends.rotation(0, 0), ends.rotation(1, 0));
+    BorderedL2::Row row{{{ends.left, 1.0}, {ends.right, -r}}, Complex(t.x(), t.y())};
+    if (frame_wedge >= 0) {
+      row.terms.push_back({frame_wedge, -(1.0 - r)});
+      row.rhs -= (1.0 - r) * frame_point;
+    }
+    bordered->push(row);
+  }
+  // The bordered L2 map for p's targets in the frame of s0, or nothing when the rows
+  // contradict each other.
+  std::optional<Eigen::MatrixXd> bordered_l2(const Problem& p) const {
+    std::optional<Eigen::MatrixXd> X = bordered->solve(p, tolerance);
+    if (X && frame_wedge >= 0) {
+      const Eigen::RowVector2d c(frame_point.real() - (*X)(frame_wedge, 0), frame_point.imag() - (*X)(frame_wedge, 1));
+      X->rowwise() += c;
+    }
+    return X;
   }
 };
 
@@ -118,8 +208,8 @@ std::vector<Eigen::Vector2d> grid_points_around(const Eigen::Vector2d& v) {
 // 0 + 0 - 1), so a step that fails is undone and tried again with half as many; a value
 // alone tries the four grid points around it. One that still fails is left to the others
 // off the grid, and returned.
-template <class Value, class Hold, class Solve, class Done>
-std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eigen::MatrixXd& X, Value value, Hold hold,
+template <class State, class Value, class Hold, class Solve, class Done>
+std::vector<int> round_greedily(std::vector<int> pending, State& state, Eigen::MatrixXd& X, Value value, Hold hold,
                                 Solve solve, Done done, double& largest_rounding) {
   std::vector<int> off_grid;
   while (!pending.empty()) {
@@ -133,7 +223,7 @@ std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eige
       if (take == 1) choices = {grid_points_around(value(order[0].second, X))};
       const size_t tries = take == 1 ? choices[0].size() : 1;
       for (size_t t = 0; t < tries && !placed; ++t) {
-        const Problem before = problem;
+        const auto before = state.save();
         double largest_move = 0;  // this try's, per coordinate, in grid units
         for (size_t j = 0; j < take; ++j) {
           const int i = order[j].second;
@@ -148,7 +238,7 @@ std::vector<int> round_greedily(std::vector<int> pending, Problem& problem, Eige
           placed = true;
           break;
         }
-        problem = before;
+        state.restore(before);
         for (size_t j = 0; j < take; ++j) done(order[j].second, false);
       }
       if (placed) break;
@@ -183,9 +273,12 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   // same on both maps is fixed by the equalities, which must be on the grid.
   const bool look_ahead = graph.euler_characteristic() < 2;
   std::string step = "before rounding";
+  RoundingState state{problem, std::make_unique<BorderedL2>(problem, values.watched()), 0.0, -1, {}};
+  if (!state.bordered->ok()) state.bordered.reset();
   auto l2 = [&](const Problem& p) -> std::optional<Eigen::MatrixXd> {
-    const Result r = solve_l2(p);
     ++out.solves;
+    if (state.bordered) return state.bordered_l2(p);
+    const Result r = solve_l2(p);
     if (r.ok()) return r.positions;
     if (r.status == SolveStatus::Infeasible) return std::nullopt;
     throw InputError("integer-grid rounding: the L2 map " + step + " failed (" + status_name(r.status) + "): " +
@@ -203,6 +296,9 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   std::optional<Eigen::MatrixXd> start = l2(problem);
   if (!start) throw InputError("integer-grid rounding: the seamless problem's L2 map failed before rounding");
   Eigen::MatrixXd X = std::move(*start);
+  // Rows miss by round-off (relative to the map's extent) unless they contradict, by a
+  // fraction of a grid unit or more.
+  state.tolerance = kRowTolerance * std::max(h, values.extent(X));
 
   // 1. The singular vertices. The seamless problem holds wedge 0 at the origin only to fix
   // the map's translation: the grid takes that role once a singular vertex is held (in the
@@ -211,14 +307,19 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   for (size_t i = 0; i < values.wedges.size(); ++i) {
     values.held[i] = problem.fixed[values.wedges[i]];
     if (!values.held[i]) pending.push_back(static_cast<int>(i));
+    if (values.held[i] && state.frame_wedge < 0) {  // on the grid already: the bordered rows' frame
+      state.frame_wedge = values.wedges[i];
+      const auto at = problem.positions.row(values.wedges[i]);
+      state.frame_point = {at(0), at(1)};
+    }
   }
   if (!pending.empty() && pending.size() == values.wedges.size())
     for (int w = 0; w < problem.num_vertices; ++w) problem.fixed[w] = 0;
   out.singularities = static_cast<int>(pending.size());
   step = "with the singular vertices rounded";
   const std::vector<int> off_grid_singular = round_greedily(
-      pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
-      [&](int i, const Eigen::Vector2d& point) { problem.fix({Handle{values.wedges[i], h * point}}); }, solve,
+      pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
+      [&](int i, const Eigen::Vector2d& point) { state.hold_vertex(values.wedges[i], h * point); }, solve,
       [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
   out.singularities_off_grid = static_cast<int>(off_grid_singular.size());
   out.singularities -= out.singularities_off_grid;
@@ -230,8 +331,8 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   out.translations = static_cast<int>(pending.size());
   step = "with the seam translations rounded";
   const std::vector<int> off_grid_translations = round_greedily(
-      pending, problem, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
-      [&](int i, const Eigen::Vector2d& point) { add_translation_rows(problem, values.ends[i], h * point); }, solve,
+      pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
+      [&](int i, const Eigen::Vector2d& point) { state.hold_translation(values.ends[i], h * point); }, solve,
       [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
   out.translations_off_grid = static_cast<int>(off_grid_translations.size());
   out.translations -= out.translations_off_grid;
