@@ -897,3 +897,28 @@ TEST(IntegerGrid, TheSurfacesUnitsChangeNothing) {
     EXPECT_EQ(g.problem.eq_matrix.rows(), unit.problem.eq_matrix.rows());
   }
 }
+
+// Without the look-ahead, a surface with handles can leave values the others fix off the
+// grid (here at half-integers): the map is seamless, the outcome stalled, and the counts say
+// how many. With it, the same surface rounds completely.
+TEST(IntegerGrid, ValuesLeftOffTheGridMakeTheOutcomeStalled) {
+  const Mesh frame = make_bulged_frame_surface(4, 1);  // genus 1
+  GParamOptions o;
+  o.solver.method = Method::L2;
+  o.edge_length = 0.7;
+  o.integer_grid = true;
+  o.integer_grid_options.look_ahead = false;
+  const GParamOutcome g = global_parametrize(frame, o);
+  EXPECT_EQ(g.result.status, SolveStatus::Stalled) << g.result.message;
+  EXPECT_TRUE(g.result.usable());
+  EXPECT_GT(g.rounding.translations_off_grid, 0);
+  EXPECT_EQ(g.rounding.translations + g.rounding.translations_off_grid, static_cast<int>(g.cut.branches.size()));
+  EXPECT_NEAR(g.integer_error, 0.5, 1e-9) << "a half-integer translation";
+  EXPECT_LT(g.seam_error, 1e-9);
+  EXPECT_NE(g.result.message.find("could not be rounded"), std::string::npos) << g.result.message;
+  o.integer_grid_options.look_ahead = true;
+  const GParamOutcome ahead = global_parametrize(frame, o);
+  EXPECT_EQ(ahead.result.status, SolveStatus::Solved) << ahead.result.message;
+  EXPECT_EQ(ahead.rounding.singularities_off_grid + ahead.rounding.translations_off_grid, 0);
+  EXPECT_LT(ahead.integer_error, 1e-9);
+}

@@ -157,7 +157,8 @@ Result solve_unit_size(const GParamOptions& o, const UnitSize& unit) {
 // scaled back when the two differ.
 void round_unit_problem(const GParamOptions& o, const UnitSize& unit, Problem& solved, GParamOutcome& out) {
   out.rounding =
-      round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale, solved, o.progress);
+      round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale, solved, o.progress,
+                            o.integer_grid_options);
   if (&solved == &out.problem) return;
   out.problem.eq_matrix = solved.eq_matrix;
   out.problem.eq_rhs = solved.eq_rhs * unit.scale;

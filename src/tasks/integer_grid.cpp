@@ -259,7 +259,8 @@ std::vector<int> round_greedily(std::vector<int> pending, State& state, Eigen::M
 
 IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& graph, const CutGraph& cut,
                                           const std::vector<Singularity>& singular, double h, Problem& problem,
-                                          const std::function<void(const std::string&)>& progress) {
+                                          const std::function<void(const std::string&)>& progress,
+                                          const IntegerGridOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   IntegerGridRounding out;
   GridValues values;
@@ -271,7 +272,7 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   // With handles (genus >= 1) a rounding can fix a later value off the grid (the header): each
   // step is then also solved with perturbed targets, and a value not rounded yet that is the
   // same on both maps is fixed by the equalities, which must be on the grid.
-  const bool look_ahead = graph.euler_characteristic() < 2;
+  const bool look_ahead = options.look_ahead && graph.euler_characteristic() < 2;
   std::string step = "before rounding";
   RoundingState state{problem, std::make_unique<BorderedL2>(problem, values.watched()), 0.0, -1, {}};
   if (!state.bordered->ok()) state.bordered.reset();

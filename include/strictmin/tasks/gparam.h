@@ -43,6 +43,7 @@ struct GParamOptions {
   // --integer-grid: the singular vertices and the seam translations rounded to the grid of
   // the edge length before the method's solve (tasks/integer_grid.h).
   bool integer_grid = false;
+  IntegerGridOptions integer_grid_options;  // the rounding's (its look-ahead)
   CrossFieldOptions field_options;
   SolverOptions solver;
   LocalGlobalOptions local_global;
