@@ -29,9 +29,12 @@
 #include "strictmin/problem/problem.h"
 #include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/local_global.h"
+#include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/relax.h"
 #include "strictmin/tasks/deform.h"
+#include "strictmin/tasks/map_distortion.h"
 #include "strictmin/tasks/method.h"
+#include "strictmin/mesh/validate.h"
 
 using namespace strictmin;
 
@@ -99,6 +102,33 @@ TEST(CheckProblem, EveryMethodRefusesInconsistentArrays) {
       {"weight", [](Problem& p) { p.weights(1) = NAN; }},
       {"gradients are not finite", [](Problem& p) { p.gradients(0, 0) = INFINITY; }},
       {"position is not finite", [](Problem& p) { p.positions(0, 0) = NAN; }},
+  };
+  for (const auto& [needle, spoil] : cases) {
+    Problem p = good;
+    spoil(p);
+    expect_refused_by_every_method(p, needle, needle);
+  }
+}
+
+// relax reads copy_base and copy_rotation by vertex (seam groups): a copy_base entry out of
+// range or a missing copy_rotation segfaulted.
+TEST(CheckProblem, EveryMethodRefusesCopiesOutOfRange) {
+  Problem good = grid_problem();
+  int v = 0;
+  while (good.fixed[v]) ++v;
+  good.eq_matrix.resize(1, 2 * good.num_vertices);
+  good.eq_matrix.insert(0, 2 * v) = 1.0;
+  good.eq_rhs = Eigen::VectorXd::Constant(1, good.positions(v, 0));
+  good.copy_base.resize(good.num_vertices);
+  for (int w = 0; w < good.num_vertices; ++w) good.copy_base[w] = w;
+  good.copy_rotation = Eigen::MatrixXd::Identity(2, 2).replicate(good.num_vertices, 1);
+  EXPECT_NO_THROW(check_problem(good, "test"));
+  const std::vector<std::pair<std::string, std::function<void(Problem&)>>> cases = {
+      {"copy_base has", [](Problem& p) { p.copy_base.pop_back(); }},
+      {"copy_base of vertex", [&](Problem& p) { p.copy_base[v] = 100000; }},
+      {"copy_base of vertex", [&](Problem& p) { p.copy_base[v] = -2; }},
+      {"copy_rotation", [](Problem& p) { p.copy_rotation.resize(0, 0); }},
+      {"copy_rotation is not finite", [](Problem& p) { p.copy_rotation(3, 0) = NAN; }},
   };
   for (const auto& [needle, spoil] : cases) {
     Problem p = good;

@@ -101,6 +101,22 @@ void check_equalities(const Problem& p, const std::string& who) {
   }
 }
 
+// The copies of one point (relax's seam groups): copy_base's entries and copy_rotation's
+// blocks are read by vertex index, so sizes and indices out of range read out of bounds.
+void check_copies(const Problem& p, const std::string& who) {
+  if (p.copy_base.empty()) return;
+  if (static_cast<int>(p.copy_base.size()) != p.num_vertices)
+    throw InputError(who + ": copy_base has " + std::to_string(p.copy_base.size()) + " entries for " +
+                     std::to_string(p.num_vertices) + " vertices (empty, or one per vertex)");
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (p.copy_base[v] < -1 || p.copy_base[v] >= p.num_vertices)
+      throw InputError(who + ": copy_base of vertex " + std::to_string(v) + " is " + std::to_string(p.copy_base[v]) +
+                       ", outside -1.." + std::to_string(p.num_vertices - 1));
+  const Eigen::Index n = p.image_dim;
+  check_shape(who, "copy_rotation", p.copy_rotation.rows(), p.copy_rotation.cols(), n * p.num_vertices, n);
+  if (!p.copy_rotation.allFinite()) throw InputError(who + ": copy_rotation is not finite");
+}
+
 }  // namespace
 
 void check_map(const Problem& p, const Eigen::MatrixXd& X, const std::string& who) {
@@ -115,6 +131,7 @@ void check_problem(const Problem& p, const std::string& who) {
   check_element_arrays(p, who);
   check_vertex_arrays(p, who);
   check_equalities(p, who);
+  check_copies(p, who);
 }
 
 }  // namespace strictmin
