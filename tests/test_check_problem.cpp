@@ -232,6 +232,30 @@ TEST(CheckArguments, PublicHelpersRefuseSizesThatDisagree) {
   EXPECT_THROW(solve_linf(p, o), InputError);
 }
 
+// The solvers' reusable parts, given another problem than the one they were built for, read
+// it by their own indices (relax swept without end or segfaulted); fix() writes the flags and
+// positions by vertex (it segfaulted on a problem without them).
+TEST(CheckArguments, ReusableSolversRefuseAnotherProblem) {
+  const Problem p = grid_problem();
+  const Problem other = make_problem(make_grid(2, 2));
+  const L2Solver l2(p);
+  EXPECT_THROW(l2.solve(other), InputError);
+  L2Solver reweighted(p);
+  EXPECT_THROW(reweighted.reweight(p, Eigen::VectorXd::Ones(3)), InputError);
+  const RelaxSweeper sweeper(p);
+  Eigen::MatrixXd X = other.positions;
+  EXPECT_THROW(sweeper.sweep(other, X), InputError);
+  Problem unsized;
+  unsized.num_vertices = 4;
+  EXPECT_THROW(unsized.fix({{2, Eigen::Vector2d(1, 1)}}), InputError);
+}
+
+// An accept_tolerance of NaN never accepted a move and swept without end.
+TEST(CheckArguments, RelaxSweeperRefusesAnAcceptToleranceOutOfRange) {
+  const Problem p = grid_problem();
+  for (double bad : {static_cast<double>(NAN), -0.5, 1.0}) EXPECT_THROW(RelaxSweeper(p, bad), InputError) << bad;
+}
+
 TEST(CheckArguments, WriteMeshRefusesWhatReadMeshWouldAndWritesNothing) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "strictmin_check_write";
   std::filesystem::create_directories(dir);

@@ -91,6 +91,9 @@ Eigen::MatrixXd Problem::with_free_dofs(const Eigen::VectorXd& x) const {
 }
 
 void Problem::fix(const std::vector<Handle>& handles) {
+  if (static_cast<int>(fixed.size()) != num_vertices || positions.rows() != num_vertices || positions.cols() != image_dim)
+    throw InputError("fix: the problem's fixed flags and positions are not sized for its " +
+                     std::to_string(num_vertices) + " vertices (make_problem sets them)");
   for (const Handle& h : handles) {
     if (h.vertex < 0 || h.vertex >= num_vertices)
       throw InputError("handle on vertex " + std::to_string(h.vertex) + ": the mesh has " +

@@ -23,7 +23,8 @@ std::vector<int> checked_free_index(const Problem& p) {
 
 }  // namespace
 
-L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(checked_free_index(p)) {
+L2Solver::L2Solver(const Problem& p, const L2Options& options)
+    : free_index_(checked_free_index(p)), num_elements_(p.num_elements()) {
   if (p.has_equalities() && options.complex_equalities) {
     if (auto basis = complex_equality_basis(p)) {
       complex_ = std::make_shared<ComplexL2>(std::move(*basis));
@@ -64,7 +65,20 @@ L2Solver::L2Solver(const Problem& p, const L2Options& options) : free_index_(che
   factorize();
 }
 
+// The factorization indexes the construction's vertices and elements: another problem read
+// out of bounds.
+void L2Solver::check_same_size(const Problem& p) const {
+  if (p.num_vertices != static_cast<int>(free_index_.size()) || p.num_elements() != num_elements_)
+    throw InputError("l2: the solver was built for " + std::to_string(free_index_.size()) + " vertices and " +
+                     std::to_string(num_elements_) + " elements, the problem has " + std::to_string(p.num_vertices) +
+                     " and " + std::to_string(p.num_elements()));
+}
+
 bool L2Solver::reweight(const Problem& p, const Eigen::VectorXd& element_weights) {
+  check_same_size(p);
+  if (element_weights.size() != num_elements_)
+    throw InputError("l2: " + std::to_string(element_weights.size()) + " element weights for " +
+                     std::to_string(num_elements_) + " elements");
   if (complex_) return factorize_complex(p, element_weights);
   if (status_ != SolveStatus::Solved && !cholesky_.analyzed()) return false;
   assemble(p, element_weights);
@@ -162,6 +176,7 @@ bool L2Solver::factorize_complex(const Problem& p, const Eigen::VectorXd& elemen
 }
 
 Eigen::MatrixXd L2Solver::solve(const Problem& p) const {
+  check_same_size(p);
   if (complex_) return status_ == SolveStatus::Solved ? complex_->solve(p) : p.positions;
   if (basis_ && status_ == SolveStatus::Solved) return solve_constrained(p);
   Eigen::MatrixXd X = p.positions;

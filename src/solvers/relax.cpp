@@ -22,6 +22,7 @@ using namespace relax_detail;
 // of copies (relax_copies.h); every other problem its vertices (relax_sweep.h).
 struct RelaxSweeper::Impl : SweepData {
   std::unique_ptr<CopiesSweeper> copies;
+  int num_vertices = 0, num_elements = 0;  // of the problem it was built for
 };
 
 namespace {
@@ -37,6 +38,10 @@ void check_no_flips_with_copies(const Problem& p, bool no_flips) {
 
 RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_flips)
     : accept_tolerance_(accept_tolerance) {
+  RelaxOptions options;  // the range of RelaxOptions::accept_tolerance (a NaN never accepted a move: endless sweeps)
+  options.accept_tolerance = accept_tolerance;
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("relax: " + why);
   check_problem(p, "relax");
   check_no_flips_with_copies(p, no_flips);
   check_no_flips(p, no_flips);
@@ -48,12 +53,19 @@ RelaxSweeper::RelaxSweeper(const Problem& p, double accept_tolerance, bool no_fl
     build(p, *impl);
   }
   impl->no_flips = no_flips;
+  impl->num_vertices = p.num_vertices;
+  impl->num_elements = p.num_elements();
   impl_ = std::move(impl);
 }
 
 double RelaxSweeper::sweep(const Problem& problem, Eigen::MatrixXd& X) const { return sweep(problem, X, nullptr); }
 
 double RelaxSweeper::sweep(const Problem& problem, Eigen::MatrixXd& X, double* max_distortion) const {
+  // The rings index the construction's vertices and elements: another mesh read out of bounds.
+  if (problem.num_vertices != impl_->num_vertices || problem.num_elements() != impl_->num_elements)
+    throw InputError("relax: the sweeper was built for " + std::to_string(impl_->num_vertices) + " vertices and " +
+                     std::to_string(impl_->num_elements) + " elements, the problem has " +
+                     std::to_string(problem.num_vertices) + " and " + std::to_string(problem.num_elements()));
   if (X.rows() != problem.num_vertices || X.cols() != impl_->dim)
     throw InputError("relax: the map has " + std::to_string(X.rows()) + " by " + std::to_string(X.cols()) +
                      " entries, expected " + std::to_string(problem.num_vertices) + " by " +

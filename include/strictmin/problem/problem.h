@@ -74,7 +74,8 @@ struct Problem {
   Eigen::MatrixXd with_free_dofs(const Eigen::VectorXd& x) const;
 
   // Fix vertices at given positions (positional constraints). Throws InputError on a
-  // vertex out of range or a position of the wrong dimension.
+  // vertex out of range, a position of the wrong dimension, or fixed / positions not sized
+  // #V and #V by image_dim.
   void fix(const std::vector<Handle>& handles);
 };
 

@@ -36,10 +36,12 @@ class L2Solver {
   // Assembles and factorizes K for the problem's mesh, weights and fixed vertices.
   explicit L2Solver(const Problem& problem, const L2Options& options = {});
   // New per-element weights (#E, e.g. A_T w_T for IRLS): K is reassembled and factorized
-  // again, reusing the symbolic analysis. False when K is not positive definite.
+  // again, reusing the symbolic analysis. False when K is not positive definite. Throws
+  // InputError (as solve) for a problem of another size or weights that are not #E.
   bool reweight(const Problem& problem, const Eigen::VectorXd& element_weights);
   // Solved-for positions (#V by image_dim) for the problem's current targets and fixed
-  // positions (same mesh and fixed set as at construction).
+  // positions (same mesh and fixed set as at construction: another vertex or element count
+  // is refused, InputError).
   Eigen::MatrixXd solve(const Problem& problem) const;
   SolveStatus status() const { return status_; }
   const std::string& message() const { return message_; }
@@ -53,6 +55,7 @@ class L2Solver {
   Eigen::MatrixXd solve_constrained(const Problem& problem) const;
   bool factorize();
   bool factorize_complex(const Problem& problem, const Eigen::VectorXd& element_weights);
+  void check_same_size(const Problem& problem) const;
 
   std::shared_ptr<const EqualityBasis> basis_;  // with equalities only (real form)
   std::shared_ptr<ComplexL2> complex_;          // with complex-linear equalities
@@ -60,6 +63,7 @@ class L2Solver {
   Eigen::VectorXd Kz0_;                         // (K (x) I) z0
 
   std::vector<int> free_index_;
+  int num_elements_ = 0;  // of the construction's problem (free_index_ has its vertices)
   Eigen::VectorXd element_weights_;
   Eigen::SparseMatrix<double> K_;       // free by free
   Eigen::SparseMatrix<double> K_fixed_; // free by all vertices: couplings to fixed ones

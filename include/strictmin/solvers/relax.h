@@ -47,11 +47,13 @@ struct RelaxOptions {
 // free vertex, the colouring). Targets may change between sweeps (ARAP local steps).
 class RelaxSweeper {
  public:
-  // accept_tolerance, no_flips: as RelaxOptions.
+  // accept_tolerance, no_flips: as RelaxOptions. Throws InputError for an accept_tolerance
+  // outside [0, 1) or a problem that fails check_problem.
   explicit RelaxSweeper(const Problem& problem, double accept_tolerance = RelaxOptions{}.accept_tolerance,
                         bool no_flips = false);
   // One sweep over every free vertex, colour by colour, moving X (#V by image_dim) in place.
-  // Returns the largest distance a vertex moved.
+  // Returns the largest distance a vertex moved. Throws InputError when the problem's vertex
+  // or element count is not the construction's, or X is not #V by image_dim.
   double sweep(const Problem& problem, Eigen::MatrixXd& X) const;
   // The same; also sets *max_distortion (if not null) to the largest field deviation over all
   // elements after the sweep, taken from the rings' values (no extra pass over the mesh).
