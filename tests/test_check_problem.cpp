@@ -232,6 +232,32 @@ TEST(CheckArguments, PublicHelpersRefuseSizesThatDisagree) {
   EXPECT_THROW(solve_linf(p, o), InputError);
 }
 
+// The helpers that take a map next to a mesh or problem read it by vertex or corner: a map
+// of another size read beyond it (map_distortion returned 8e+248 for 3 corner images of 32
+// triangles, a UV-mapped mesh whose FUV has 2 columns 3e+130).
+TEST(CheckArguments, MapHelpersRefuseMapsOfAnotherSize) {
+  const Problem p = grid_problem();
+  const Mesh grid = make_grid(4, 4);
+  EXPECT_THROW(map_distortion(grid, Eigen::MatrixXd::Zero(3, 2), Measure::Arap), InputError);
+  EXPECT_THROW(corner_images(grid.F, Eigen::MatrixXd::Zero(3, 2)), InputError);
+  EXPECT_THROW(frame_distortion(p, Eigen::MatrixXd::Zero(3, 2)), InputError);
+  EXPECT_THROW(conformal_distortion(p, Measure::Quasiconformal, Eigen::MatrixXd::Zero(3, 2)), InputError);
+  Problem q = p;
+  EXPECT_THROW(local_step(q, Eigen::MatrixXd::Zero(3, 2), {}), InputError);
+  EXPECT_THROW(local_distortion(p, Eigen::MatrixXd::Zero(3, 2), {}), InputError);
+  LocalGlobalOptions small_shapes;
+  small_shapes.shapes = Eigen::MatrixXd::Identity(2, 2);
+  EXPECT_THROW(local_distortion(p, p.positions, small_shapes), InputError);
+  const Mesh cap = make_spherical_cap(3, 6);
+  Mesh mapped = cap;
+  mapped.UV = Eigen::MatrixXd::Zero(3, 2);  // FUV's indices go beyond it
+  mapped.FUV = cap.F;
+  EXPECT_THROW(map_distortion(cap, mapped, Measure::Arap), InputError);
+  mapped.UV = Eigen::MatrixXd::Zero(cap.num_vertices(), 2);
+  mapped.FUV = Eigen::MatrixXi::Zero(cap.num_elements(), 2);
+  EXPECT_THROW(map_distortion(cap, mapped, Measure::Arap), InputError);
+}
+
 // The solvers' reusable parts, given another problem than the one they were built for, read
 // it by their own indices (relax swept without end or segfaulted); fix() writes the flags and
 // positions by vertex (it segfaulted on a problem without them).
@@ -248,6 +274,20 @@ TEST(CheckArguments, ReusableSolversRefuseAnotherProblem) {
   Problem unsized;
   unsized.num_vertices = 4;
   EXPECT_THROW(unsized.fix({{2, Eigen::Vector2d(1, 1)}}), InputError);
+}
+
+// NaN shapes made every local distortion NaN, which the maximum skipped: local-global said
+// "the start's distortion is zero to rounding", solved, with a NaN distortion.
+TEST(CheckArguments, LocalGlobalRefusesShapesThatAreNotFinite) {
+  const Problem p = grid_problem();
+  LocalGlobalOptions o;
+  o.shapes = Eigen::MatrixXd::Identity(2, 2).replicate(p.num_elements(), 1);
+  o.shapes(5, 1) = NAN;
+  SolverOptions s;
+  s.method = Method::Linf;
+  EXPECT_THROW(local_global(p, p.positions, s, o), InputError);
+  Problem q = p;
+  EXPECT_THROW(local_step(q, p.positions, o), InputError);
 }
 
 // An accept_tolerance of NaN never accepted a move and swept without end.

@@ -123,7 +123,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
     if (!r.usable()) {
       out.status = r.status;
       out.message = "global step " + std::to_string(it) + ": " + r.message;
-      out.distortion = local_distortion(p, out.positions, o);
+      out.distortion = local_targets(p, out.positions, o, nullptr);
       out.time_s = seconds_since(t0);
       return out;
     }
@@ -248,7 +248,7 @@ Result iterate(Problem& p, Result out, const SolverOptions& solver, const LocalG
   out.status = worse_status(decide_status(stop), last_global);
   if (last_global != SolveStatus::Solved) reason += "; the last global step: " + last_global_message;
   out.message = reason;
-  out.distortion = local_distortion(p, out.positions, o);
+  out.distortion = local_targets(p, out.positions, o, nullptr);
   out.time_s = seconds_since(t0);
   return out;
 }
@@ -266,7 +266,7 @@ Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const
   start.positions = X;
   const Result r = iterate(p, std::move(start), l2, lo, std::chrono::steady_clock::now());
   const Eigen::VectorXd& bounds = solver.linf.element_bounds;
-  if (!r.usable() || !(max_of(r.distortion, bounds) < max_of(local_distortion(problem, X, o), bounds))) return X;
+  if (!r.usable() || !(max_of(r.distortion, bounds) < max_of(local_targets(problem, X, o, nullptr), bounds))) return X;
   // A map with more flipped elements than the start leads linf into another basin (cow_disk
   // from Tutte, flip-free: 0.79 instead of 0.567): keep the start then. Fewer is welcome (boy:
   // 11 instead of the L2 fd start's 125, and 9 linf steps instead of 61).
@@ -287,11 +287,35 @@ Eigen::MatrixXd l2_start(const Problem& problem, const Eigen::MatrixXd& X, const
 
 }  // namespace
 
+namespace {
+
+// The shapes are read per element: empty, or #E*n by m and finite (NaN shapes made every
+// local distortion NaN, which the maximum skipped: "zero to rounding", solved).
+void check_shapes(const Problem& p, const LocalGlobalOptions& o) {
+  if (o.shapes.size() == 0) return;
+  if (o.shapes.rows() != static_cast<Eigen::Index>(p.num_elements()) * p.image_dim || o.shapes.cols() != p.domain_dim)
+    throw InputError("local-global: shapes has " + std::to_string(o.shapes.rows()) + " by " +
+                     std::to_string(o.shapes.cols()) + " entries, the problem needs " +
+                     std::to_string(p.num_elements() * p.image_dim) + " by " + std::to_string(p.domain_dim));
+  if (!o.shapes.allFinite()) throw InputError("local-global: shapes is not finite");
+}
+
+// What the local step reads: the problem, a map of its size and the shapes.
+void check_local_step_input(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  check_problem(p, "local step");
+  check_map(p, X, "local step");
+  check_shapes(p, o);
+}
+
+}  // namespace
+
 void local_step(Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  check_local_step_input(p, X, o);
   local_targets(p, X, o, &p.targets);
 }
 
 Eigen::VectorXd local_distortion(const Problem& p, const Eigen::MatrixXd& X, const LocalGlobalOptions& o) {
+  check_local_step_input(p, X, o);
   return local_targets(p, X, o, nullptr);
 }
 
@@ -315,13 +339,7 @@ Result local_global(const Problem& problem, const Eigen::MatrixXd& X0, const Sol
   check_map(problem, X0, "local-global start");
   if (!solver.is_valid(&why)) throw InputError("invalid solver options: " + why);
   relax_detail::check_no_flips(problem, o.no_flips || solver.relax.no_flips, "local-global");
-  if (o.shapes.size() != 0 &&
-      (o.shapes.rows() != static_cast<Eigen::Index>(problem.num_elements()) * problem.image_dim ||
-       o.shapes.cols() != problem.domain_dim))
-    throw InputError("local-global: shapes has " + std::to_string(o.shapes.rows()) + " by " +
-                     std::to_string(o.shapes.cols()) + " entries, the problem needs " +
-                     std::to_string(problem.num_elements() * problem.image_dim) + " by " +
-                     std::to_string(problem.domain_dim));
+  check_shapes(problem, o);
   Problem p = problem;
   Result out;
   out.positions = X0;

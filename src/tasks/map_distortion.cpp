@@ -3,12 +3,19 @@
 #include <Eigen/Dense>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
+#include "strictmin/problem/check_problem.h"
 #include "strictmin/problem/problem.h"
 #include "problem/frame_axes.h"
 
 namespace strictmin {
 
 Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X) {
+  for (Eigen::Index e = 0; e < F.rows(); ++e)
+    for (Eigen::Index j = 0; j < F.cols(); ++j)
+      if (F(e, j) < 0 || F(e, j) >= X.rows())
+        throw InputError("corner_images: element " + std::to_string(e) + " has vertex " + std::to_string(F(e, j)) +
+                         ", the map has " + std::to_string(X.rows()) + " rows");
   Eigen::MatrixXd C(F.rows() * F.cols(), X.cols());
   for (Eigen::Index e = 0; e < F.rows(); ++e)
     for (Eigen::Index j = 0; j < F.cols(); ++j) C.row(e * F.cols() + j) = X.row(F(e, j));
@@ -30,6 +37,10 @@ MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Me
   if (!surface_to_3d && images.cols() != p.image_dim)
     throw InputError("the map has " + std::to_string(images.cols()) + " coordinates per vertex, the rest mesh needs " +
                      std::to_string(p.image_dim));
+  if (images.rows() != static_cast<Eigen::Index>(E) * c)
+    throw InputError("the map has " + std::to_string(images.rows()) + " corner images, the rest mesh's " +
+                     std::to_string(E) + " elements have " + std::to_string(static_cast<Eigen::Index>(E) * c) +
+                     " corners (one image per element corner)");
   MapDistortion out;
   out.distortion.resize(E);
   out.flipped = Eigen::VectorXi::Zero(E);
@@ -53,6 +64,8 @@ MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Me
 
 MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measure, const std::string& rest_name,
                              const std::string& mapped_name) {
+  check_mesh_structure(rest, rest_name);
+  check_mesh_structure(mapped, mapped_name, false);  // its UVs are read by index; a map may hold anything
   if (rest.num_elements() != mapped.num_elements() || rest.F.cols() != mapped.F.cols())
     throw InputError(mapped_name + " has " + std::to_string(mapped.num_elements()) + " elements of " +
                      std::to_string(mapped.F.cols()) + " corners, " + rest_name + " has " +
@@ -79,6 +92,8 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
 }
 
 MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
+  check_problem(p, "frame_distortion");
+  check_map(p, X, "frame_distortion");
   MapDistortion d;
   const int E = p.num_elements();
   d.distortion.resize(E);

@@ -81,7 +81,8 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
 Result solve_conformal_direct(const Problem& problem, const Eigen::MatrixXd& start, const ConformalOptions& options,
                               const DirectOptions& direct, ConformalStats* stats = nullptr);
 
-// The measure (qc or iso) of every element of the map X (+inf where det J <= 0).
+// The measure (qc or iso) of every element of the map X (+inf where det J <= 0). Throws
+// InputError for a problem that fails check_problem or an X of another size.
 Eigen::VectorXd conformal_distortion(const Problem& problem, Measure m, const Eigen::MatrixXd& X);
 
 }  // namespace strictmin

@@ -69,11 +69,13 @@ struct LocalGlobalOptions {
   std::function<void(const IterationRecord&)> progress;
 
   // Ranges: max_iterations >= 0, acceleration_window in [0, 50], relative_change not NaN (negative: never stop on the
-  // change), target_extrapolation in [0, 1], shapes empty or #E*n by m (checked against the problem by local_global).
+  // change), target_extrapolation in [0, 1], shapes empty or #E*n by m and finite (checked against the problem by local_global).
   bool is_valid(std::string* why = nullptr) const;
 };
 
-// Sets problem.targets from the map X (#V by n) by the local step.
+// Sets problem.targets from the map X (#V by n) by the local step. Both throw InputError for
+// a problem that fails check_problem, an X of another size, or shapes that are not empty or
+// #E*n by m and finite (local_global too).
 void local_step(Problem& problem, const Eigen::MatrixXd& X, const LocalGlobalOptions& options);
 
 // The distortion the local step measures: D_T = min over the local step's family of

@@ -21,20 +21,25 @@ struct MapDistortion {
 // Rest planar triangles (2D or constant z) or tets: images of the same dimension.
 // Rest 3D surface triangles: images 2D (a parametrization, each triangle in its own
 // isometric frame) or 3D (a deformed surface; fd then compares J with the rest frame).
+// Throws InputError for a rest mesh that fails check_mesh_structure or images that are not
+// #E*corners rows of that dimension (images that are not finite give non-finite distortion).
 MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& corner_images, Measure measure);
 
 // The map from rest to mapped: same number of elements required. Uses mapped's UVs when it
 // has them (a UV-mapped OBJ is the map of its surface), else mapped's vertex positions
 // (same number of vertices and the same elements required). Throws InputError naming
-// what differs.
+// what differs, or a mesh that fails check_mesh_structure (mapped's coordinates may be
+// non-finite).
 MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measure,
                              const std::string& rest_name = "rest", const std::string& mapped_name = "mapped");
 
-// Corner images of vertex positions X (#V by k) through the elements F.
+// Corner images of vertex positions X (#V by k) through the elements F. Throws InputError
+// for an index of F outside X's rows.
 Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X);
 
 // Field deviation against a problem's own targets (parametrization frames, the cross field):
-// D_T = ||J_T - R_T||_F of the map X (#V by n), flips from the Jacobians' signs.
+// D_T = ||J_T - R_T||_F of the map X (#V by n), flips from the Jacobians' signs. Throws
+// InputError for a problem that fails check_problem or an X of another size.
 struct Problem;
 MapDistortion frame_distortion(const Problem& problem, const Eigen::MatrixXd& X);
 

@@ -71,6 +71,8 @@ std::string bracket_closed_undecided(const qc::BisectionOutcome& b, double toler
 }  // namespace
 
 Eigen::VectorXd conformal_distortion(const Problem& p, Measure m, const Eigen::MatrixXd& X) {
+  check_problem(p, "conformal_distortion");
+  check_map(p, X, "conformal_distortion");
   Eigen::VectorXd d(p.num_elements());
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(p.image_dim, p.domain_dim);
   for (int e = 0; e < p.num_elements(); ++e) d[e] = distortion(m, p.jacobian(e, X), I);
