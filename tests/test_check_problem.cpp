@@ -296,6 +296,23 @@ TEST(CheckArguments, RelaxSweeperRefusesAnAcceptToleranceOutOfRange) {
   for (double bad : {static_cast<double>(NAN), -0.5, 1.0}) EXPECT_THROW(RelaxSweeper(p, bad), InputError) << bad;
 }
 
+// UV and FUV of the documented widths (mesh.h): write_mesh read FUV(e, 2) of a 2-column FUV
+// and wrote its garbage.
+TEST(CheckMesh, TextureCoordinatesOfTheWrongWidthAreRefused) {
+  Mesh m = make_grid(2, 2);
+  m.UV = Eigen::MatrixXd::Zero(m.num_vertices(), 2);
+  m.FUV = Eigen::MatrixXi::Zero(m.num_elements(), 2);
+  EXPECT_THROW(check_mesh_structure(m, "m"), InputError);
+  const std::string path = (std::filesystem::temp_directory_path() / "strictmin_check_uv.obj").string();
+  EXPECT_THROW(write_mesh(path, m), InputError);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  m.FUV = m.F;
+  m.UV = Eigen::MatrixXd::Zero(m.num_vertices(), 3);
+  EXPECT_THROW(check_mesh_structure(m, "m"), InputError);
+  m.UV = Eigen::MatrixXd::Zero(m.num_vertices(), 2);
+  EXPECT_NO_THROW(check_mesh_structure(m, "m"));
+}
+
 TEST(CheckArguments, WriteMeshRefusesWhatReadMeshWouldAndWritesNothing) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "strictmin_check_write";
   std::filesystem::create_directories(dir);

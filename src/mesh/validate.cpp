@@ -74,6 +74,18 @@ class Validator {
     if (V.rows() > 0 && V.cols() != 2 && V.cols() != 3)
       fail("vertices have " + std::to_string(V.cols()) + " coordinates (need 2 or 3)");
     if (F.rows() > 0 && tets_ && V.cols() != 3) fail("tetrahedra need 3D vertex coordinates, the vertices are 2D");
+    check_uv_counts();
+  }
+
+  // UV #UV by 2 and FUV one corner per element corner (mesh.h): the writers and
+  // map_distortion read FUV(e, k) for every corner of F and two texture coordinates.
+  void check_uv_counts() const {
+    if (!mesh_.has_uv()) return;
+    if (mesh_.FUV.cols() != mesh_.F.cols())
+      fail("texture faces have " + std::to_string(mesh_.FUV.cols()) + " corners, the elements " +
+           std::to_string(mesh_.F.cols()));
+    if (mesh_.UV.cols() != 2)
+      fail("texture coordinates have " + std::to_string(mesh_.UV.cols()) + " values (need 2)");
   }
 
   static std::string non_finite_name(double value) { return std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf"; }

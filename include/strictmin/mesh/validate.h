@@ -32,7 +32,8 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
 
 // The part of validate_mesh that every function taking a Mesh relies on, for meshes built in
-// code: 3 or 4 corners per element, 2 or 3 coordinates per vertex (3 for tets), finite
+// code: 3 or 4 corners per element, 2 or 3 coordinates per vertex (3 for tets), with UVs two
+// per texture coordinate and as many texture corners per element as corners, finite
 // coordinates and UVs (unless `require_finite` is false: a map written whatever it holds),
 // every index (and UV index) in range, no vertex twice in an element. An empty mesh passes. Throws InputError naming `source`, the element or vertex and the reason (an index
 // out of range read and wrote out of bounds before).
