@@ -276,6 +276,16 @@ TEST(CheckArguments, ReusableSolversRefuseAnotherProblem) {
   EXPECT_THROW(unsized.fix({{2, Eigen::Vector2d(1, 1)}}), InputError);
 }
 
+// A NaN handle coordinate was called "beyond 1e150".
+TEST(CheckArguments, DeformNamesANaNHandleCoordinate) {
+  try {
+    deform(make_grid(2, 2), {{0, Eigen::Vector2d(NAN, 0)}}, DeformOptions{});
+    ADD_FAILURE() << "a NaN handle was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("has the coordinate nan, not a number"), std::string::npos) << e.what();
+  }
+}
+
 // NaN shapes made every local distortion NaN, which the maximum skipped: local-global said
 // "the start's distortion is zero to rounding", solved, with a NaN distortion.
 TEST(CheckArguments, LocalGlobalRefusesShapesThatAreNotFinite) {

@@ -172,6 +172,15 @@ TEST(ConeField, RefusesConesThatBreakPoincareHopf) {
   nan_pin.pin_direction = Eigen::Vector3d(NAN, 0, 0);
   expect_input_error([&] { cone_cross_field(s.mesh, s.graph, s.frames, quarters_of_smoothest(s), nan_pin); },
                      {"cross field options", "pin_direction"});
+  // A pin face beyond the faces (ignored here, refused by the smoothest field) or below -1
+  // (taken as "no pinning").
+  CrossFieldOptions far_pin;
+  far_pin.pin_face = s.mesh.num_elements();
+  expect_input_error([&] { cone_cross_field(s.mesh, s.graph, s.frames, quarters_of_smoothest(s), far_pin); },
+                     {"pin_face", "beyond the mesh's"});
+  far_pin.pin_face = -7;
+  expect_input_error([&] { cone_cross_field(s.mesh, s.graph, s.frames, quarters_of_smoothest(s), far_pin); },
+                     {"cross field options", "pin_face must be >= -1"});
 }
 
 TEST(ConeFile, RoundTripAndErrorsNameTheLine) {

@@ -228,6 +228,14 @@ TEST(Interp, PinnedVertexMovesLinearly) {
   EXPECT_LT((f.mesh.V.row(7) - (0.7 * bar.V.row(7) + 0.3 * target.V.row(7))).norm(), 1e-12);
 }
 
+// -1 pins the centroid; other negative vertices were taken for it silently.
+TEST(Interp, RefusesANegativePinnedVertexOtherThanMinusOne) {
+  const Mesh bar = make_grid(20, 2, 10.0, 1.0);
+  InterpOptions o = options_for(Method::L2);
+  o.pin_vertex = -5;
+  EXPECT_THROW(Interpolator(bar, bent_bar(bar, 0.5 * kPi)).at(0.3, o), InputError);
+}
+
 TEST(Interp, RefusesDifferentConnectivity) {
   const Mesh bar = make_grid(4, 2);
   Mesh other = make_grid(5, 2);

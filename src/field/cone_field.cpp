@@ -191,6 +191,9 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceF
                             const std::string& source) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("cross field options: " + why);
+  if (options.pin_face >= g.num_faces)  // as smoothest_cross_field (it was ignored here)
+    throw InputError("cross field: pin_face " + std::to_string(options.pin_face) + " is beyond the mesh's " +
+                     std::to_string(g.num_faces) + " faces");
   check_cone_sum(g, quarters, source);
   const Eigen::VectorXd w = edge_weights(mesh, g, fr);
   // 1. The exact part: the potential's rotated gradient sets every vertex's holonomy.
@@ -209,8 +212,7 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceF
   CrossField out;
   out.u.resize(g.num_faces);
   for (int f = 0; f < g.num_faces; ++f) out.u(f) = std::polar(1.0, 4.0 * phi(f));
-  if (options.pin_face >= 0 && options.pin_face < g.num_faces)
-    pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
+  if (options.pin_face >= 0) pin_field_rotation(out.u, options.pin_face, options.pin_direction, fr);
   out.energy = field_energy(out.u, mesh, g, fr);
   return out;
 }

@@ -139,6 +139,7 @@ void lower_among_unit_fields(const Mesh& mesh, const SurfaceGraph& g, const Face
 bool CrossFieldOptions::is_valid(std::string* why) const {
   OptionCheck check(why);
   check.at_least("max_iterations", max_iterations, 1)
+      .at_least("pin_face", pin_face, -1)
       .positive("tolerance", tolerance)
       .positive("unit_diffusion", unit_diffusion)
       .at_least("unit_max_steps", unit_max_steps, 0)

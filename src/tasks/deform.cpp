@@ -43,7 +43,9 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
         char value[32];
         std::snprintf(value, sizeof value, "%g", h.position(k));
         throw InputError("the handle of vertex " + std::to_string(h.vertex) + " has the coordinate " + value +
-                         ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the mesh and the targets)");
+                         (std::isnan(h.position(k)) ? ", not a number"
+                                                    : ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the "
+                                                      "mesh and the targets)"));
       }
   out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
   const Eigen::MatrixXd rest = out.problem.positions;

@@ -147,6 +147,9 @@ InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
     throw InputError("interp: --method exact (the exact strict minimizer) is for field deviation only; use --method "
                      "direct or relax");
   const int V = problem_.num_vertices;
+  if (options.pin_vertex < -1)  // -1 is the centroid; other negative values were taken for it silently
+    throw InputError("interp: pinned vertex " + std::to_string(options.pin_vertex) +
+                     " is not a vertex (0-based; -1 pins the centroid)");
   if (options.pin_vertex >= V || (options.pin_vertex >= 0 && component_[options.pin_vertex] < 0))
     throw InputError("interp: pinned vertex " + std::to_string(options.pin_vertex) + " is not a vertex of an element (the mesh has " +
                      std::to_string(V) + " vertices, 0-based)");

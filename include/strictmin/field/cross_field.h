@@ -57,7 +57,8 @@ struct CrossFieldOptions {
   int max_iterations = 60;
   double tolerance = 1e-12;
   // Rotate the whole field (E is invariant under a global phase) so that face `pin_face`
-  // has a direction along pin_direction (projected into its plane). -1: no pinning.
+  // has a direction along pin_direction (projected into its plane). -1: no pinning; below -1
+  // is refused, and so is a face beyond the mesh's (InputError in the functions).
   int pin_face = -1;
   Eigen::Vector3d pin_direction = Eigen::Vector3d::UnitX();
   // The smoothest *unit* field (`--field unit`): the normalized eigenvector is not the unit

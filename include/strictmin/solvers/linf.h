@@ -29,8 +29,9 @@ struct LinfOptions {
   double gap_tolerance = 1e-8;       // stop when (k - lower_bound) <= gap_tolerance * max(1, |k|)
   double feasibility_tolerance = 1e-8;
   int max_iterations = 100;
-  // Per-element fixed bounds k_T (size #E; a negative value or NaN means "free element",
-  // bounded by k). Empty: every element is free. Passed by the strict-minimizer algorithms.
+  // Per-element fixed bounds k_T (size #E; a negative value means "free element", bounded by
+  // k; NaN and inf are refused). Empty: every element is free. Passed by the strict-minimizer
+  // algorithms.
   Eigen::VectorXd element_bounds;
   // Paper Section 5.1 (a): among the L-infinity minimizers, return the one with the least
   // area-weighted L2 field deviation (a second solve with D_T <= k*).

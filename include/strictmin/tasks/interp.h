@@ -55,7 +55,7 @@ class Interpolator {
                const std::string& target_name = "target");
 
   // The shape at time t in [0, 1]. Throws InputError for t outside [0, 1], a pinned vertex
-  // out of range, or a method that can't run on this kind of element (relax and direct on
+  // out of range (below -1 too), or a method that can't run on this kind of element (relax and direct on
   // 3D surfaces, exact anywhere).
   InterpFrame at(double t, const InterpOptions& options) const;
 
