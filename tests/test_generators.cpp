@@ -65,6 +65,7 @@ TEST(MakeGrid, ValidatesClean) {
 TEST(MakeGrid, BadArguments) {
   EXPECT_THROW(make_grid(0, 3), InputError);
   EXPECT_THROW(make_grid(2, 2, -1.0), InputError);
+  EXPECT_THROW(make_grid(100000, 100000), InputError);  // more vertices than an int indexes (segfaulted)
 }
 
 TEST(MakeTetBox, LayoutAndPositions) {
@@ -100,4 +101,5 @@ TEST(MakeTetBox, ConformingAndValid) {
 TEST(MakeTetBox, BadArguments) {
   EXPECT_THROW(make_tet_box(1, 0, 1), InputError);
   EXPECT_THROW(make_tet_box(1, 1, 1, 1.0, 0.0), InputError);
+  EXPECT_THROW(make_tet_box(2000, 2000, 2000), InputError);  // more tets than an int indexes (segfaulted)
 }

@@ -35,6 +35,14 @@ TEST(Handles, TextWithCommentsAndBlankLines) {
   EXPECT_EQ(h[1].position, Eigen::Vector2d(1e-3, 2));
 }
 
+// A byte-order mark is skipped in text from memory as by read_handles (the first line was
+// "expected a vertex index").
+TEST(Handles, ByteOrderMarkInAString) {
+  const std::vector<Handle> h = parse_handles("\xEF\xBB\xBF3 0.5 -1\n", "h.txt", 10, 2);
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0].vertex, 3);
+}
+
 TEST(Handles, Json) {
   const std::string text = R"(  {"handles": [{"vertex": 2, "position": [0.25, 1, -3]},
                                   {"vertex": 9, "position": [0, 0, 0]}]})";

@@ -130,6 +130,13 @@ TEST(ReadObj, PlainTriangles) {
   EXPECT_TRUE(m.is_planar());
 }
 
+// A byte-order mark is skipped in text from memory as in a file (it made "v" unknown there).
+TEST(ReadObj, ByteOrderMarkInAString) {
+  const Mesh m = read_mesh_from_string("\xEF\xBB\xBF" + std::string(kSquareObj), "square.obj");
+  EXPECT_EQ(m.num_vertices(), 4);
+  EXPECT_EQ(m.num_elements(), 2);
+}
+
 TEST(ReadObj, TwoDimensionalVertices) {
   const Mesh m = read_mesh_from_string("v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n", "tri.obj");
   EXPECT_EQ(m.dim(), 2);

@@ -31,6 +31,8 @@ constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 Mesh read_mesh_from_string(const std::string& text, const std::string& name, std::vector<std::string>* warnings,
                            const MeshReadOptions& options) {
+  if (io_detail::has_utf8_bom(text))  // as read_mesh's file (read_text_file)
+    return read_mesh_from_string(text.substr(3), name, warnings, options);
   const std::string ext = extension_of(name);
   Mesh mesh;
   if (ext == ".obj")

@@ -23,7 +23,11 @@ namespace strictmin::io_detail {
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-// The whole file as a string; InputError "cannot read PATH: reason".
+// A UTF-8 byte-order mark (some Windows editors write one) is not part of the first line:
+// left in, it made the first statement unknown ("\xEF\xBB\xBFv" dropped a vertex).
+inline bool has_utf8_bom(const std::string& text) { return text.compare(0, 3, "\xEF\xBB\xBF") == 0; }
+
+// The whole file as a string, without a byte-order mark; InputError "cannot read PATH: reason".
 inline std::string read_text_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError("cannot read " + path + ": it is a directory");
@@ -37,9 +41,7 @@ inline std::string read_text_file(const std::string& path) {
   const int error = errno;
   std::fclose(file);
   if (failed) throw InputError("cannot read " + path + ": " + std::strerror(error));
-  // A UTF-8 byte-order mark (some Windows editors write one) is not part of the first line:
-  // left in, it made the first statement unknown ("\xEF\xBB\xBFv" dropped a vertex).
-  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+  if (has_utf8_bom(text)) text.erase(0, 3);
   return text;
 }
 

@@ -1,5 +1,7 @@
 #include "strictmin/mesh/generators.h"
 
+#include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -12,12 +14,23 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw InputError(what);
 }
 
+// Vertex indices are ints: a count beyond them overflowed into a negative size (segfault).
+void require_int_count(double count, const char* who) {
+  if (count <= std::numeric_limits<int>::max()) return;
+  char why[160];
+  std::snprintf(why, sizeof why, "%s: the mesh would have %.3g vertices or elements, more than an int can index", who,
+                count);
+  throw InputError(why);
+}
+
 }  // namespace
 
 Mesh make_grid(int nx, int ny, double width, double height, double x0, double y0) {
   require(nx >= 1 && ny >= 1, "make_grid: nx and ny must be at least 1 (got " + std::to_string(nx) + ", " +
                                   std::to_string(ny) + ")");
   require(width > 0 && height > 0, "make_grid: width and height must be positive");
+  require_int_count(2.0 * nx * ny, "make_grid");
+  require_int_count((nx + 1.0) * (ny + 1.0), "make_grid");
   Mesh mesh;
   mesh.V.resize((nx + 1) * (ny + 1), 2);
   for (int j = 0; j <= ny; ++j)
@@ -42,6 +55,8 @@ Mesh make_grid(int nx, int ny, double width, double height, double x0, double y0
 Mesh make_tet_box(int nx, int ny, int nz, double width, double height, double depth) {
   require(nx >= 1 && ny >= 1 && nz >= 1, "make_tet_box: nx, ny and nz must be at least 1");
   require(width > 0 && height > 0 && depth > 0, "make_tet_box: width, height and depth must be positive");
+  require_int_count(6.0 * nx * ny * nz, "make_tet_box");
+  require_int_count((nx + 1.0) * (ny + 1.0) * (nz + 1.0), "make_tet_box");
   auto index = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
   Mesh mesh;
   mesh.V.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
