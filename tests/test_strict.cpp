@@ -349,6 +349,24 @@ TEST(Direct, GoesOnPastALevelThatStopsShortAndStopsOnANonFiniteMap) {
   EXPECT_NE(close.message.find("0 of them with reduced accuracy"), std::string::npos) << close.message;
 }
 
+// A level solver that says solved with a map that is not finite, or one of another size:
+// direct reported the first solved (with a NaN map) and read the second out of bounds.
+TEST(Direct, RefusesALevelSolversMapThatIsNotFiniteOrOfAnotherSize) {
+  const Problem p = test_support::random_target_bar();
+  DirectOptions o;
+  o.k_min = 0;
+  o.moving_rings = 0;
+  o.level_solver = injected_level_solver(2, [](Result& r) { r.positions(3, 0) = NAN; });
+  const Result nan_map = solve_direct(p, o);
+  EXPECT_EQ(nan_map.status, SolveStatus::NumericalError) << nan_map.message;
+  EXPECT_EQ(nan_map.iterations, 1);
+  EXPECT_TRUE(nan_map.positions.allFinite());
+  EXPECT_NE(nan_map.message.find("direct stopped at level 2: the level's map is not finite"), std::string::npos)
+      << nan_map.message;
+  o.level_solver = injected_level_solver(2, [](Result& r) { r.distortion.conservativeResize(3); });
+  EXPECT_THROW(solve_direct(p, o), InputError);
+}
+
 TEST(Exact, RefusesLargeMeshes) {
   Problem p = make_problem(make_grid(40, 40));
   p.fix({{0, Eigen::Vector2d(0, 0)}});

@@ -110,6 +110,25 @@ struct ShortLevels {
   }
 };
 
+// DirectOptions::level_solver's usable result for the level's problem (the whole one or a
+// restriction): one of another size was read by the problem's indices, out of bounds.
+Result checked_level_result(const Problem& problem, Result r) {
+  if (!status_usable(r.status)) return r;  // no map to read (level_map_usable stops the run)
+  if (r.positions.rows() != problem.num_vertices || r.positions.cols() != problem.image_dim ||
+      r.distortion.size() != problem.num_elements())
+    throw InputError("direct: the level solver returned a map of " + std::to_string(r.positions.rows()) + " by " +
+                     std::to_string(r.positions.cols()) + " with " + std::to_string(r.distortion.size()) +
+                     " distortions for a level of " + std::to_string(problem.num_vertices) + " vertices and " +
+                     std::to_string(problem.num_elements()) + " elements");
+  return r;
+}
+
+// A level's result that the next levels can build on: usable, finite, the problem's size.
+bool level_map_usable(const Problem& p, const Result& r, double reached) {
+  return r.usable() && r.positions.rows() == p.num_vertices && r.positions.cols() == p.image_dim &&
+         r.distortion.size() == p.num_elements() && r.distortion.allFinite() && std::isfinite(reached);
+}
+
 }  // namespace
 
 bool DirectOptions::is_valid(std::string* why) const {
@@ -164,7 +183,7 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     // Each level starts from the previous level's map: it meets every fixed bound (they are
     // widened to it below), so the solve needs no phase 1.
     const LevelSolver solve_level = [&](const Problem& problem, const LinfOptions& o, const Eigen::MatrixXd& X) -> Result {
-      if (options.level_solver) return options.level_solver(problem, o, X);
+      if (options.level_solver) return checked_level_result(problem, options.level_solver(problem, o, X));
       LinfWarmStart* w = warm_levels ? &warm : nullptr;
       if (&problem != &p) return solve_linf_warm(problem, o, w);  // a sub-problem: its positions are X
       level.positions = X;
@@ -190,25 +209,28 @@ Result solve_direct(const Problem& p, const DirectOptions& options, const LinfOp
     // This level's k over its free elements, and how well the solve certified it (with none,
     // nothing moved: the level is exact).
     const bool any_level_free = std::find(level_free.begin(), level_free.end(), 1) != level_free.end();
-    double reached = r.distortion.size() ? 0.0 : INFINITY;
-    for (int e = 0; e < r.distortion.size(); ++e)
+    const bool sized = r.distortion.size() == p.num_elements();  // else level_map_usable stops below
+    double reached = sized && r.distortion.size() ? 0.0 : INFINITY;
+    for (int e = 0; sized && e < r.distortion.size(); ++e)
       if (level_free[e]) reached = std::max(reached, r.distortion(e));
     const double gap = any_level_free ? (reached - r.lower_bound) / std::max(1.0, std::abs(reached)) : 0.0;
+    // Stop on a map that is not finite or not the problem's size (a level solver's, whatever
+    // its status: a "solved" one was read out of bounds and reported solved) and on
+    // infeasible (the bounds were met by the previous map: only round-off can say so, and its
+    // map is no witness).
+    if (!level_map_usable(p, r, reached)) {
+      out.status = status_usable(r.status) ? SolveStatus::NumericalError : r.status;
+      stop_message = "direct stopped at level " + std::to_string(step) + ": " +
+                     (status_usable(r.status) ? "the level's map is not finite or not the problem's size; " : "") +
+                     r.message;
+      break;
+    }
     if (r.status != SolveStatus::Solved) {
       // A level whose solve stopped short still leaves a map that meets every fixed bound
       // (the interior-point iterates stay feasible for them to the solver's tolerance, and
       // the bounds are widened to what it reached below): the levels after it remain
       // well-defined, only this level's value is known less precisely (its certified gap).
-      // Use it and go on; the summary says how many and how far off. Stop on a map that is
-      // not finite and on infeasible (the bounds were met by the previous map: only round-off
-      // can say so, and its map is no witness).
-      const bool usable = r.usable() && r.distortion.size() == p.num_elements() &&
-                          r.distortion.allFinite() && std::isfinite(reached);
-      if (!usable) {
-        out.status = r.status;
-        stop_message = "direct stopped at level " + std::to_string(step) + ": " + r.message;
-        break;
-      }
+      // Use it and go on; the summary says how many and how far off.
       short_levels.add(step, r, reached, options.level_bound_certifies ? gap : NAN);
     } else {
       short_levels.add_loose(step, reached, gap);

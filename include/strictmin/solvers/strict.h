@@ -34,7 +34,10 @@ struct StrictStep {
 };
 
 // Solves one level of the direct algorithm: problem (1) with the bounds in
-// linf.element_bounds, from the previous level's map X. Default: solve_linf.
+// linf.element_bounds, from the previous level's map X. Default: solve_linf. A usable result
+// must have the problem's sizes (positions #V by image_dim, distortion #E: solve_direct
+// throws InputError otherwise); a usable status with a map that is not finite ends the run
+// numerical-error.
 using LevelSolver = std::function<Result(const Problem&, const LinfOptions&, const Eigen::MatrixXd& X)>;
 
 struct DirectOptions {
