@@ -286,6 +286,17 @@ TEST(CheckArguments, DeformNamesANaNHandleCoordinate) {
   }
 }
 
+// Two handles on one vertex with different targets: the later one won silently.
+TEST(CheckArguments, DeformRefusesTwoTargetsForOneVertex) {
+  const Mesh m = make_grid(2, 2);
+  EXPECT_THROW(deform(m, {{0, Eigen::Vector2d(0, 0)}, {0, Eigen::Vector2d(5, 0)}, {8, Eigen::Vector2d(1, 1)}},
+                      DeformOptions{}),
+               InputError);
+  // The same target twice is one handle.
+  EXPECT_NO_THROW(deform(m, {{0, Eigen::Vector2d(0, 0)}, {0, Eigen::Vector2d(0, 0)}, {8, Eigen::Vector2d(1, 1)}},
+                         DeformOptions{}));
+}
+
 // NaN shapes made every local distortion NaN, which the maximum skipped: local-global said
 // "the start's distortion is zero to rounding", solved, with a NaN distortion.
 TEST(CheckArguments, LocalGlobalRefusesShapesThatAreNotFinite) {

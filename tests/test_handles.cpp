@@ -38,9 +38,15 @@ TEST(Handles, TextWithCommentsAndBlankLines) {
 // A byte-order mark is skipped in text from memory as by read_handles (the first line was
 // "expected a vertex index").
 TEST(Handles, ByteOrderMarkInAString) {
-  const std::vector<Handle> h = parse_handles("\xEF\xBB\xBF3 0.5 -1\n", "h.txt", 10, 2);
+  const std::vector<Handle> h = parse_handles("\xEF\xBB\xBF" "3 0.5 -1\n", "h.txt", 10, 2);
   ASSERT_EQ(h.size(), 1u);
   EXPECT_EQ(h[0].vertex, 3);
+}
+
+// The map's dimension is 2 or 3: 0 gave handles without coordinates, 4 four-coordinate ones.
+TEST(Handles, DimensionOtherThanTwoOrThreeIsRefused) {
+  EXPECT_THROW(parse_handles("0\n", "h.txt", 5, 0), InputError);
+  EXPECT_THROW(parse_handles("0 1 1 1 1\n", "h.txt", 5, 4), InputError);
 }
 
 TEST(Handles, Json) {

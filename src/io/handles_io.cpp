@@ -142,6 +142,8 @@ std::vector<Handle> parse_json(const std::string& text, HandleCollector& handles
 }  // namespace
 
 std::vector<Handle> parse_handles(const std::string& text, const std::string& name, int num_vertices, int dim) {
+  if (dim != 2 && dim != 3)  // any other count was taken as the handles' width
+    throw InputError(located(name, 0, "handles are for 2D or 3D maps, not " + std::to_string(dim) + "D"));
   if (io_detail::has_utf8_bom(text)) return parse_handles(text.substr(3), name, num_vertices, dim);  // as read_handles
   HandleCollector handles(name, num_vertices, dim);
   const size_t first = text.find_first_not_of(" \t\r\n\f\v");

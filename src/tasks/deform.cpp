@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/validate.h"
@@ -13,6 +14,22 @@
 #include "strictmin/tasks/deform_start.h"
 
 namespace strictmin {
+
+namespace {
+
+// Two handles on one vertex with different targets: the later one won silently (the handle
+// file and the Python module refuse them). The same target twice is one handle.
+void check_one_target_per_vertex(const std::vector<Handle>& handles) {
+  std::map<int, const Handle*> seen;
+  for (const Handle& h : handles) {
+    const auto [it, inserted] = seen.try_emplace(h.vertex, &h);
+    const Eigen::VectorXd& first = it->second->position;
+    if (!inserted && (first.size() != h.position.size() || first != h.position))
+      throw InputError("vertex " + std::to_string(h.vertex) + " has two handles with different targets");
+  }
+}
+
+}  // namespace
 
 DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options) {
   const bool local_global_measure = options.measure == Measure::Arap || options.measure == Measure::Asap;
@@ -47,6 +64,7 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
                                                     : ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the "
                                                       "mesh and the targets)"));
       }
+  check_one_target_per_vertex(handles);
   out.problem = surface ? make_surface_deformation_problem(mesh) : make_problem(mesh);
   const Eigen::MatrixXd rest = out.problem.positions;
   out.problem.fix(handles);

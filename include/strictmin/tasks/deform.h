@@ -45,7 +45,8 @@ struct DeformOutcome {
   int flips_added = 0;    // elements flipped in the result and not in the start
 };
 
-// Throws InputError for input the task can't take: no handles, a part of the mesh without a handle, a measure the method can't minimize.
+// Throws InputError for input the task can't take: no handles, two handles on one vertex with
+// different targets, a part of the mesh without a handle, a measure the method can't minimize.
 DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const DeformOptions& options);
 
 }  // namespace strictmin
