@@ -57,16 +57,14 @@ void BorderedL2::push(const Row& row) {
   g_.push_back(std::move(local));
   g_full_.push_back(std::move(g));
   c_.push_back(c);
-  rows_.push_back(row);
   cached_.reset();
 }
 
 void BorderedL2::truncate(std::size_t count) {
-  if (count >= rows_.size()) return;
+  if (count >= c_.size()) return;
   g_.resize(count);
   g_full_.resize(count);
   c_.resize(count);
-  rows_.resize(count);
   w_rows_ = std::min<Eigen::Index>(w_rows_, static_cast<Eigen::Index>(count));
   cached_.reset();
 }

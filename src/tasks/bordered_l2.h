@@ -44,14 +44,14 @@ class BorderedL2 {
   };
 
   // Factors p's L2 matrix. `watched`: the vertices whose positions solve() returns, and the
-  // only ones rows may name. ok() is false when p's equalities have no complex form or the
-  // matrix is not positive definite (then use solve_l2 on the problem with its rows).
+  // only ones rows may name. ok() is false when p's equalities have no complex form (a
+  // seamless problem always has one) or the matrix is not positive definite.
   BorderedL2(const Problem& p, const std::vector<int>& watched);
   ~BorderedL2();
   bool ok() const { return l2_ != nullptr; }
 
   void push(const Row& row);
-  std::size_t size() const { return rows_.size(); }
+  std::size_t size() const { return c_.size(); }
   void truncate(std::size_t count);  // drops the rows after the first `count`
 
   // The L2 map for the targets of p (the problem given at construction, with any targets)
@@ -75,7 +75,6 @@ class BorderedL2 {
   std::vector<Complex> c_;                               // per row: b - a z0
   mutable Eigen::MatrixXcd w_;        // local nodes by rows solved so far: K^-1 g^H on the local nodes
   mutable Eigen::Index w_rows_ = 0;   // how many rows w_ holds
-  std::vector<Row> rows_;
   mutable std::unique_ptr<Decomposition> cached_;  // of S, for the rows as they are
 };
 

@@ -6,11 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <complex>
-#include <memory>
 #include <optional>
 
 #include "strictmin/io/input_error.h"
-#include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
 #include "tasks/bordered_l2.h"
@@ -118,10 +116,10 @@ struct GridValues {
   }
 };
 
-// What the rounding changes, with snapshots to undo a step: the problem (its fixed vertices
-// and translation rows, for the method that runs after) and, when its equalities have a
-// complex form, the same holds as rows of the bordered L2 solver (tasks/bordered_l2.h),
-// whose solves replace a fresh L2 solve of the problem per step.
+// What the rounding has decided, with snapshots to undo a step: the holds (singular vertices
+// at grid points, branch translations on the grid), each also a row of the bordered L2 solver
+// (tasks/bordered_l2.h) whose solves judge the steps. The problem takes the holds once, at
+// the end (apply).
 //
 // The bordered solver keeps the seamless problem's anchor (wedge 0 at the origin). The map
 // may be translated as a whole (the free branch translations absorb it: t changes by
@@ -132,57 +130,69 @@ struct GridValues {
 // (r: the branch's rotation as a complex number; surface units).
 struct RoundingState {
   using Complex = std::complex<double>;
-  Problem& problem;
-  std::unique_ptr<BorderedL2> bordered;  // null: solve_l2 on the problem instead
-  double tolerance = 0;                  // how far the bordered rows may miss (contradiction above)
-  int frame_wedge = -1;                  // s0 (-1: none held yet)
-  Complex frame_point;                   // P0
+  BorderedL2 bordered;
+  double tolerance = 0;   // how far the bordered rows may miss (contradiction above)
+  int frame_wedge = -1;   // s0 (-1: none held yet)
+  Complex frame_point;    // P0
+  std::vector<std::pair<int, Eigen::Vector2d>> held_vertices;          // (wedge, P)
+  std::vector<std::pair<const BranchEnds*, Eigen::Vector2d>> held_translations;  // (branch, T)
+
+  RoundingState(const Problem& p, const std::vector<int>& watched) : bordered(p, watched) {}
 
   struct Snapshot {
-    Problem problem;
-    std::size_t rows;
+    std::size_t rows, vertices, translations;
     int frame_wedge;
     Complex frame_point;
   };
-  Snapshot save() const { return {problem, bordered ? bordered->size() : 0, frame_wedge, frame_point}; }
+  Snapshot save() const {
+    return {bordered.size(), held_vertices.size(), held_translations.size(), frame_wedge, frame_point};
+  }
   void restore(const Snapshot& s) {
-    problem = s.problem;
-    if (bordered) bordered->truncate(s.rows);
+    bordered.truncate(s.rows);
+    held_vertices.resize(s.vertices);
+    held_translations.resize(s.translations);
     frame_wedge = s.frame_wedge;
     frame_point = s.frame_point;
   }
 
   void hold_vertex(int w, const Eigen::Vector2d& point) {
-    problem.fix({Handle{w, point}});
-    if (!bordered) return;
+    held_vertices.emplace_back(w, point);
     const Complex P(point.x(), point.y());
     if (frame_wedge < 0) {
       frame_wedge = w;
       frame_point = P;
       return;
     }
-    bordered->push({{{w, 1.0}, {frame_wedge, -1.0}}, P - frame_point});
+    bordered.push({{{w, 1.0}, {frame_wedge, -1.0}}, P - frame_point});
   }
   void hold_translation(const BranchEnds& ends, const Eigen::Vector2d& t) {
-    add_translation_rows(problem, ends, t);
-    if (!bordered) return;
+    held_translations.emplace_back(&ends, t);
     const Complex r(ends.rotation(0, 0), ends.rotation(1, 0));
     BorderedL2::Row row{{{ends.left, 1.0}, {ends.right, -r}}, Complex(t.x(), t.y())};
     if (frame_wedge >= 0) {
       row.terms.push_back({frame_wedge, -(1.0 - r)});
       row.rhs -= (1.0 - r) * frame_point;
     }
-    bordered->push(row);
+    bordered.push(row);
   }
   // The bordered L2 map for p's targets in the frame of s0, or nothing when the rows
   // contradict each other.
-  std::optional<Eigen::MatrixXd> bordered_l2(const Problem& p) const {
-    std::optional<Eigen::MatrixXd> X = bordered->solve(p, tolerance);
+  std::optional<Eigen::MatrixXd> l2(const Problem& p) const {
+    std::optional<Eigen::MatrixXd> X = bordered.solve(p, tolerance);
     if (X && frame_wedge >= 0) {
       const Eigen::RowVector2d c(frame_point.real() - (*X)(frame_wedge, 0), frame_point.imag() - (*X)(frame_wedge, 1));
       X->rowwise() += c;
     }
     return X;
+  }
+  // The holds into the problem: the held singular vertices as fixed vertices (wedge 0, which
+  // held the map only against translation, let go when a vertex of the rounding is held and
+  // it is none of theirs) and the translations as equality rows.
+  void apply(Problem& problem, bool release_anchor) const {
+    if (release_anchor && !held_vertices.empty())
+      for (int w = 0; w < problem.num_vertices; ++w) problem.fixed[w] = 0;
+    for (const auto& [w, point] : held_vertices) problem.fix({Handle{w, point}});
+    for (const auto& [ends, t] : held_translations) add_translation_rows(problem, *ends, t);
   }
 };
 
@@ -273,28 +283,24 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   // step is then also solved with perturbed targets, and a value not rounded yet that is the
   // same on both maps is fixed by the equalities, which must be on the grid.
   const bool look_ahead = options.look_ahead && graph.euler_characteristic() < 2;
-  std::string step = "before rounding";
-  RoundingState state{problem, std::make_unique<BorderedL2>(problem, values.watched()), 0.0, -1, {}};
-  if (!state.bordered->ok()) state.bordered.reset();
-  auto l2 = [&](const Problem& p) -> std::optional<Eigen::MatrixXd> {
-    ++out.solves;
-    if (state.bordered) return state.bordered_l2(p);
-    const Result r = solve_l2(p);
-    if (r.ok()) return r.positions;
-    if (r.status == SolveStatus::Infeasible) return std::nullopt;
-    throw InputError("integer-grid rounding: the L2 map " + step + " failed (" + status_name(r.status) + "): " +
-                     r.message);
-  };
+  RoundingState state(problem, values.watched());
+  if (!state.bordered.ok())
+    throw InputError("integer-grid rounding: the seamless problem's L2 matrix is not positive definite");
+  // The targets do not change while rounding: the perturbed ones are made once.
+  const Problem perturbed = look_ahead ? with_perturbed_targets(problem) : Problem();
   auto solve = [&]() -> std::optional<Eigen::MatrixXd> {
-    std::optional<Eigen::MatrixXd> X = l2(problem);
+    ++out.solves;
+    std::optional<Eigen::MatrixXd> X = state.l2(problem);
     if (X && look_ahead) {
-      const std::optional<Eigen::MatrixXd> Y = l2(with_perturbed_targets(problem));
+      ++out.solves;
+      const std::optional<Eigen::MatrixXd> Y = state.l2(perturbed);
       if (!Y || values.fixes_a_value_off_the_grid(*X, *Y)) X.reset();
     }
     if (!X) ++out.retried_steps;
     return X;
   };
-  std::optional<Eigen::MatrixXd> start = l2(problem);
+  ++out.solves;
+  std::optional<Eigen::MatrixXd> start = state.l2(problem);
   if (!start) throw InputError("integer-grid rounding: the seamless problem's L2 map failed before rounding");
   Eigen::MatrixXd X = std::move(*start);
   // Rows miss by round-off (relative to the map's extent) unless they contradict, by a
@@ -314,29 +320,26 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
       state.frame_point = {at(0), at(1)};
     }
   }
-  if (!pending.empty() && pending.size() == values.wedges.size())
-    for (int w = 0; w < problem.num_vertices; ++w) problem.fixed[w] = 0;
+  const bool release_anchor = !pending.empty() && pending.size() == values.wedges.size();
   out.singularities = static_cast<int>(pending.size());
-  step = "with the singular vertices rounded";
   const std::vector<int> off_grid_singular = round_greedily(
       pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
       [&](int i, const Eigen::Vector2d& point) { state.hold_vertex(values.wedges[i], h * point); }, solve,
       [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
   out.singularities_off_grid = static_cast<int>(off_grid_singular.size());
   out.singularities -= out.singularities_off_grid;
-  for (int i : off_grid_singular) problem.fixed[values.wedges[i]] = 0;
 
   // 2. The branch translations.
   pending.clear();
   for (size_t i = 0; i < values.ends.size(); ++i) pending.push_back(static_cast<int>(i));
   out.translations = static_cast<int>(pending.size());
-  step = "with the seam translations rounded";
   const std::vector<int> off_grid_translations = round_greedily(
       pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
       [&](int i, const Eigen::Vector2d& point) { state.hold_translation(values.ends[i], h * point); }, solve,
       [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
   out.translations_off_grid = static_cast<int>(off_grid_translations.size());
   out.translations -= out.translations_off_grid;
+  state.apply(problem, release_anchor);
   out.time_s = seconds_since(t0);
   if (progress) {
     char line[260];

@@ -60,8 +60,8 @@ struct IntegerGridOptions {
 
 // Rounds `problem` (the seamless problem of mesh, graph and cut, h = 1 units) in place: adds
 // the fixed singular vertices and the translation rows for the grid of spacing h (surface
-// units). Throws InputError when an L2 solve between the steps fails (a rounding that
-// contradicts the earlier ones: not expected, see above).
+// units). Throws InputError when the seamless problem's L2 matrix cannot be factored (its
+// L2 map would fail as well).
 IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& graph, const CutGraph& cut,
                                           const std::vector<Singularity>& singular, double h, Problem& problem,
                                           const std::function<void(const std::string&)>& progress = nullptr,
