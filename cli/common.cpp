@@ -178,14 +178,13 @@ std::filesystem::path path_key(const std::string& path) {
   return key;
 }
 
-// Whether two paths name one file: the same name, or one file under two names (a hard link).
+}  // namespace
+
 bool same_file(const std::string& a, const std::string& b) {
   if (path_key(a) == path_key(b)) return true;
   std::error_code ec;
   return std::filesystem::equivalent(a, b, ec) && !ec;
 }
-
-}  // namespace
 
 void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std::string, std::string>>& task_outputs,
                        const std::string& report_dir, const std::vector<std::pair<std::string, std::string>>& inputs) {

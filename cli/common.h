@@ -58,6 +58,9 @@ void print_local_global_progress(const IterationRecord& r, const std::string& in
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
 // The same for the common output options (--summary, --distortion).
 void check_output_paths(const OutputOptions& out);
+// Whether two paths name one file: the same name written another way (relative, with ..,
+// through a link), or one file under two names (a hard link).
+bool same_file(const std::string& a, const std::string& b);
 // Every output of a run at once, before any work: the checks above for the task's own
 // outputs and the common ones, no two flags naming one file (the later write would replace
 // the earlier), no output naming one of the run's inputs (`inputs`: {what, path}, e.g.

@@ -348,18 +348,10 @@ std::string section_title(const LoadedRun& run, const std::vector<LoadedRun>& al
 
 // One summary given twice would be compared with itself as if it were two runs.
 void refuse_repeated_summaries(const std::vector<std::string>& files) {
-  std::vector<fs::path> seen;
-  for (const auto& f : files) {
-    std::error_code ec;
-    fs::path key = fs::weakly_canonical(fs::absolute(f, ec), ec);
-    if (ec) key = fs::absolute(f).lexically_normal();
-    for (std::size_t i = 0; i < seen.size(); ++i) {
-      std::error_code same_ec;
-      if (seen[i] == key || (fs::equivalent(seen[i], key, same_ec) && !same_ec))
-        throw InputError(f + ": this summary is given twice (also as " + files[i] + ")");
-    }
-    seen.push_back(key);
-  }
+  for (std::size_t j = 0; j < files.size(); ++j)
+    for (std::size_t i = 0; i < j; ++i)
+      if (same_file(files[i], files[j]))
+        throw InputError(files[j] + ": this summary is given twice (also as " + files[i] + ")");
 }
 
 int run_report(ReportCommandArgs a) {
