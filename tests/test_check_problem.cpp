@@ -102,12 +102,45 @@ TEST(CheckProblem, EveryMethodRefusesInconsistentArrays) {
       {"weight", [](Problem& p) { p.weights(1) = NAN; }},
       {"gradients are not finite", [](Problem& p) { p.gradients(0, 0) = INFINITY; }},
       {"position is not finite", [](Problem& p) { p.positions(0, 0) = NAN; }},
+      {"vertex 25 is free but belongs to no element and no equality", [](Problem& p) {
+         p.num_vertices += 1;  // the grid's 25 vertices and one that no element uses, left free
+         p.fixed.push_back(0);
+         p.positions.conservativeResize(p.num_vertices, Eigen::NoChange);
+         p.positions.row(25) << 7, 7;
+       }},
   };
   for (const auto& [needle, spoil] : cases) {
     Problem p = good;
     spoil(p);
     expect_refused_by_every_method(p, needle, needle);
   }
+}
+
+// A vertex that no element uses is still determined when an equality ties it to one that an
+// element uses: no refusal, and the solve puts it where the equality says.
+TEST(CheckProblem, AVertexInNoElementButInAnEqualityIsDetermined) {
+  Problem p = grid_problem();
+  const int free_vertex = 6, extra = p.num_vertices;
+  ASSERT_FALSE(p.fixed[free_vertex]);
+  p.num_vertices += 1;
+  p.fixed.push_back(0);
+  p.positions.conservativeResize(p.num_vertices, Eigen::NoChange);
+  p.positions.row(extra) << 7, 7;
+  std::vector<Eigen::Triplet<double>> rows;  // x_extra - x_free_vertex = (0.5, -0.25)
+  for (int r = 0; r < 2; ++r) {
+    rows.emplace_back(r, 2 * extra + r, 1.0);
+    rows.emplace_back(r, 2 * free_vertex + r, -1.0);
+  }
+  p.eq_matrix.resize(2, 2 * p.num_vertices);
+  p.eq_matrix.setFromTriplets(rows.begin(), rows.end());
+  p.eq_rhs = Eigen::Vector2d(0.5, -0.25);
+  EXPECT_NO_THROW(check_problem(p, "test"));
+  SolverOptions o;
+  o.method = Method::L2;
+  const Result r = run_method(p, o);
+  ASSERT_EQ(r.status, SolveStatus::Solved) << r.message;
+  EXPECT_NEAR(r.positions(extra, 0) - r.positions(free_vertex, 0), 0.5, 1e-9);
+  EXPECT_NEAR(r.positions(extra, 1) - r.positions(free_vertex, 1), -0.25, 1e-9);
 }
 
 // relax reads copy_base and copy_rotation by vertex (seam groups): a copy_base entry out of
@@ -192,6 +225,7 @@ TEST(CheckMesh, MakeProblemAndTasksRefuseAMeshWithBadIndicesOrShape) {
       {"corners", [](Mesh& m) { m.F.conservativeResize(Eigen::NoChange, 5); }},
       {"coordinates", [](Mesh& m) { m.V.conservativeResize(Eigen::NoChange, 1); }},
       {"non-finite", [](Mesh& m) { m.V(4, 1) = NAN; }},
+      {"the mesh has no elements", [](Mesh& m) { m.F.resize(0, 3); }},
   };
   for (const auto& [needle, spoil] : cases) {
     Mesh m = good;

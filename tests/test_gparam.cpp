@@ -606,6 +606,11 @@ TEST(BadInput, GParamRefusesWhatItCannotMap) {
   expect_input_error([&] { global_parametrize(cube, f); }, {"face 0", "zero"});
   f.field = Eigen::MatrixXd::Ones(3, 3);
   expect_input_error([&] { global_parametrize(cube, f); }, {"3 directions"});
+  // A zero-area face in a mesh built in code (read_mesh refuses it): it ended with "could
+  // not be factorized", naming nothing.
+  Mesh flat = cube;
+  flat.V.row(cube.F(0, 2)) = 0.5 * (cube.V.row(cube.F(0, 0)) + cube.V.row(cube.F(0, 1)));
+  expect_input_error([&] { global_parametrize(flat, {}, "flat.obj"); }, {"flat.obj", "face 0", "zero area"});
 }
 
 // Relax with seams moves each group of copies as one point, keeps every element's deviation

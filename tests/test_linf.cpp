@@ -17,6 +17,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
+#include "strictmin/solvers/conformal.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/tasks/examples.h"
@@ -374,6 +375,37 @@ TEST(Linf, RejectsBoundsOfTheWrongSize) {
   LinfOptions o;
   o.element_bounds = Eigen::VectorXd::Constant(3, 1.0);
   EXPECT_THROW(solve_linf(p, o), InputError);
+}
+
+// Bounds beyond 1e100 overflowed the interior-point method's squared slacks (1e150 stalled
+// at iteration 10, 1e300 at iteration 1): they are refused with the element named, while a
+// bound of 1e100 is a loose bound and leaves the free elements' optimum where it was.
+TEST(Linf, HugeAndNonFiniteBoundsAreRefusedLooseOnesAreInactive) {
+  const Problem p = test_support::figure2(10, 0.15);
+  const Result free = solve_linf(p);
+  expect_solved(free);
+  LinfOptions o;
+  o.element_bounds = Eigen::VectorXd::Constant(p.num_elements(), -1.0);
+  for (int e = 0; e < p.num_elements(); e += 3) o.element_bounds[e] = 1e100;
+  const Result loose = solve_linf(p, o);
+  ASSERT_EQ(loose.status, SolveStatus::Solved) << loose.message;
+  double k = 0;  // the bounded elements may end above k: their bound is 1e100
+  for (int e = 0; e < p.num_elements(); ++e)
+    if (o.element_bounds[e] < 0) k = std::max(k, loose.distortion[e]);
+  EXPECT_NEAR(k, free.distortion.maxCoeff(), 1e-7);
+  EXPECT_NEAR(loose.lower_bound, free.lower_bound, 1e-7);
+  for (double bad : {1e150, 1e300, double(INFINITY), double(NAN)}) {
+    o.element_bounds[6] = bad;
+    try {
+      solve_linf(p, o);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("element 6's bound"), std::string::npos) << e.what();
+    }
+    ConformalOptions c;
+    c.element_bounds = o.element_bounds;
+    EXPECT_THROW(solve_conformal_linf(p, p.positions, c), InputError) << bad;
+  }
 }
 
 TEST(Linf, UndeterminedMapIsANumericalError) {

@@ -25,6 +25,7 @@
 #include "strictmin/report/png.h"
 #include "strictmin/report/rasterizer.h"
 #include "strictmin/report/report_manifest.h"
+#include "strictmin/report/stats.h"
 #include "strictmin/report/surface_view.h"
 #include "strictmin/report/svg_view.h"
 
@@ -149,6 +150,31 @@ TEST(Histogram, SharesSumToHundredPercentOfTheArea) {
   const Eigen::VectorXd a = ramp_distortion(10, 0.31);
   EXPECT_DOUBLE_EQ(histogram_upper({&a}), 0.4);
   EXPECT_GE(histogram_upper({&a}, 0.6), 0.6);
+}
+
+// A NaN distortion is the maximum, not skipped: a comparison with NaN is false, and the
+// maximum used to be that of the other elements.
+TEST(DistortionStats, ANaNElementMakesTheMaximumNaN) {
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(4);
+  Eigen::VectorXd d(4);
+  d << 0.5, std::nan(""), 2.0, std::nan("");
+  DistortionStats s = distortion_stats(d, w);
+  EXPECT_TRUE(std::isnan(s.max));
+  EXPECT_EQ(s.max_element, 1);
+  EXPECT_TRUE(std::isnan(s.l2));
+  d << std::nan(""), 0.5, 2.0, 1.0;
+  s = distortion_stats(d, w);
+  EXPECT_TRUE(std::isnan(s.max));
+  EXPECT_EQ(s.max_element, 0);
+  d << 0.5, 3.0, 2.0, INFINITY;
+  s = distortion_stats(d, w);
+  EXPECT_EQ(s.max, INFINITY);
+  EXPECT_EQ(s.max_element, 3);
+  d << 0.5, 3.0, 2.0, 1.0;
+  s = distortion_stats(d, w);
+  EXPECT_EQ(s.max, 3.0);
+  EXPECT_EQ(s.max_element, 1);
+  EXPECT_DOUBLE_EQ(s.mean, 6.5 / 4);
 }
 
 TEST(HistogramSvg, WellFormedWithOneCurvePerMethod) {

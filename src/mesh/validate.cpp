@@ -128,6 +128,7 @@ class Validator {
   }
 
   // Zero area / volume relative to the mesh size; records the signs for check_signs().
+ public:
   void check_measures() {
     const auto& V = mesh_.V;
     const auto& F = mesh_.F;
@@ -188,6 +189,7 @@ class Validator {
   }
 
   // Two elements over the same vertex set (in any order).
+ private:
   void check_duplicates() const {
     const Eigen::Index n = mesh_.F.rows(), m = mesh_.F.cols();
     std::vector<std::pair<std::array<int, 4>, int>> keys(n);
@@ -333,6 +335,12 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
   Validator(mesh, source.empty() ? std::string("mesh") : source).check_structure(require_finite);
+}
+
+void check_element_measures(const Mesh& mesh, const std::string& source) {
+  Validator v(mesh, source.empty() ? std::string("mesh") : source);
+  v.check_structure(true);
+  v.check_measures();
 }
 
 bool coordinates_are_finite(const Mesh& mesh) {

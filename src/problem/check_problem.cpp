@@ -1,6 +1,7 @@
 #include "strictmin/problem/check_problem.h"
 
 #include <cmath>
+#include <vector>
 
 #include "strictmin/io/input_error.h"
 
@@ -117,6 +118,22 @@ void check_copies(const Problem& p, const std::string& who) {
   if (!p.copy_rotation.allFinite()) throw InputError(who + ": copy_rotation is not finite");
 }
 
+// A free vertex that no element and no equality involves has no position to find: every
+// solver's system is singular there (they ended numerical-error without saying why).
+void check_every_free_vertex_is_used(const Problem& p, const std::string& who) {
+  std::vector<char> used(p.num_vertices, 0);
+  for (Eigen::Index e = 0; e < p.elements.rows(); ++e)
+    for (Eigen::Index j = 0; j < p.elements.cols(); ++j) used[p.elements(e, j)] = 1;
+  for (int k = 0; k < p.eq_matrix.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(p.eq_matrix, k); it; ++it)
+      if (it.value() != 0) used[it.col() / p.image_dim] = 1;
+  for (int v = 0; v < p.num_vertices; ++v)
+    if (!used[v] && !p.fixed[v])
+      throw InputError(who + ": vertex " + std::to_string(v) +
+                       " is free but belongs to no element and no equality, so nothing determines it (fix it, as "
+                       "make_problem does)");
+}
+
 }  // namespace
 
 void check_map(const Problem& p, const Eigen::MatrixXd& X, const std::string& who) {
@@ -131,6 +148,7 @@ void check_problem(const Problem& p, const std::string& who) {
   check_element_arrays(p, who);
   check_vertex_arrays(p, who);
   check_equalities(p, who);
+  check_every_free_vertex_is_used(p, who);
   check_copies(p, who);
 }
 

@@ -137,6 +137,7 @@ double simplex_gradients(const Eigen::Matrix<double, d + 1, d>& P, Eigen::Matrix
 
 Problem make_problem(const Mesh& mesh) {
   check_mesh_structure(mesh, "make_problem");
+  if (mesh.F.rows() == 0) throw InputError("make_problem: the mesh has no elements (no triangle or tetrahedron to map)");
   Problem p;
   const bool tets = mesh.element_type() == ElementType::Tetrahedron;
   const bool planar = !tets && mesh.is_planar();

@@ -17,7 +17,8 @@ DistortionStats distortion_stats(const Eigen::VectorXd& d, const Eigen::VectorXd
   double sum_w = 0, sum_wd = 0, sum_wd2 = 0;
   s.max = -std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < d.size(); ++i) {
-    if (d(i) > s.max) {
+    // A NaN value makes the maximum NaN (at the first such element): a comparison would skip it.
+    if (!std::isnan(s.max) && (d(i) > s.max || std::isnan(d(i)))) {
       s.max = d(i);
       s.max_element = static_cast<int>(i);
     }

@@ -23,6 +23,7 @@
 #include "linf_program.h"
 #include "linf_warm_start.h"
 #include "solvers/linf_relaxed_equalities.h"
+#include "element_bounds_check.h"
 #include "option_check.h"
 #include "strictmin/problem/check_problem.h"
 #include "strictmin/problem/equality_basis.h"
@@ -172,12 +173,7 @@ Result solve_linf_warm(const Problem& p, const LinfOptions& options, LinfWarmSta
   if (!options.is_valid(&why)) throw InputError("linf: " + why);
   check_problem(p, "linf");
   const int E = p.num_elements();
-  for (Eigen::Index e = 0; e < options.element_bounds.size(); ++e)
-    if (!std::isfinite(options.element_bounds(e)))  // free elements have a negative bound, not +inf
-      throw InputError("linf: element " + std::to_string(e) + "'s bound is not finite (a free element's is negative)");
-  if (options.element_bounds.size() != 0 && options.element_bounds.size() != E)
-    throw InputError("element_bounds has " + std::to_string(options.element_bounds.size()) + " entries, the problem has " +
-                     std::to_string(E) + " elements");
+  check_element_bounds(options.element_bounds, E, "linf");
   Result result;
   auto finish = [&](const Eigen::MatrixXd& X) {
     result.positions = X;

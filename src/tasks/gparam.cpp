@@ -7,6 +7,7 @@
 #include <string>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 #include "strictmin/report/stats.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/l2.h"
@@ -226,6 +227,7 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   check_options(o);
   GParamOutcome out;
   const auto t0 = std::chrono::steady_clock::now();
+  check_element_measures(mesh, source.empty() ? "gparam" : source);  // read_mesh's check, for meshes built in code
   out.graph = surface_graph(mesh, source);
   out.graph_time_s = seconds_since(t0);
   say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");

@@ -39,6 +39,11 @@ constexpr double kSmallestSize = 1e-150, kLargestSize = 1e150;
 // out of range read and wrote out of bounds before).
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite = true);
 
+// check_mesh_structure, then validate_mesh's zero-area / zero-volume test and its size range
+// (1e-150 to 1e150): for library entries that take a mesh built in code and divide by its
+// areas (global_parametrize). Throws InputError naming `source` and the element.
+void check_element_measures(const Mesh& mesh, const std::string& source);
+
 // True when every vertex coordinate and texture coordinate is finite (check_mesh_structure
 // with require_finite names the first one that is not).
 bool coordinates_are_finite(const Mesh& mesh);

@@ -18,6 +18,7 @@ namespace strictmin {
 //   either is not finite; or an equality whose every unknown belongs to a fixed vertex does
 //   not hold at the fixed positions (it cannot hold at all: before, the solvers dropped it
 //   and reported the map as solved).
+// - a free vertex belongs to no element and no equality (nothing determines it);
 // - copy_base is neither empty nor one entry per vertex, an entry is outside [-1, num_vertices),
 //   or (with copy_base set) copy_rotation is not image_dim * num_vertices by image_dim or not
 //   finite.

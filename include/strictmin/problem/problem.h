@@ -84,6 +84,8 @@ struct Problem {
 // planar triangles: V is #V by 2 (or 3 with constant z), image_dim = domain_dim = 2;
 // surface triangles: each in an isometric frame of its own, image_dim = domain_dim = 2;
 // tets: image_dim = domain_dim = 3.
+// Vertices used by no element are fixed where they are. Throws InputError for a mesh
+// check_mesh_structure refuses and for a mesh without elements.
 Problem make_problem(const Mesh& mesh);
 
 // Per-element isometric 2D frame of a 3D triangle: returns the corners' 2D coordinates

@@ -5,7 +5,8 @@
 namespace strictmin {
 
 struct DistortionStats {
-  double max = 0;         // largest value (+inf when some element is infinite, e.g. qc of a flip)
+  double max = 0;         // largest value (+inf when some element is infinite, e.g. qc of a flip;
+                          // NaN when some element is NaN)
   double l2 = 0;          // area-weighted RMS: sqrt(sum A_T D_T^2 / sum A_T)
   double mean = 0;        // area-weighted mean
   int max_element = -1;   // index of the largest value

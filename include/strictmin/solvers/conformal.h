@@ -42,7 +42,8 @@ struct ConformalOptions {
   // tenth of the last improvement).
   double frame_tolerance = 1e-5;
   int max_frame_iterations = 50;
-  // Per-element fixed bounds in measure units (direct's levels; empty or negative: free).
+  // Per-element fixed bounds in measure units (direct's levels; empty or negative: free;
+  // NaN, inf and values above 1e100 are refused).
   Eigen::VectorXd element_bounds;
   int max_ipm_iterations = 100;  // each feasibility program's cap (LinfOptions::max_iterations's default)
   // iso: each frame iteration's least level by one cone program (minimize S with the rotated

@@ -8,6 +8,7 @@
 #include "strictmin/problem/check_problem.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/conformal.h"
+#include "solvers/element_bounds_check.h"
 #include "solvers/option_check.h"
 #include "solvers/qc/bisection.h"
 #include "solvers/qc/iso_level.h"
@@ -36,7 +37,7 @@ Eigen::VectorXd active_bounds(const qc::ConformalParts& parts, const Eigen::Vect
   if (element_bounds.size())
     for (int i = 0; i < parts.count(); ++i) {
       const double v = element_bounds[parts.element[i]];
-      if (std::isfinite(v) && v >= 0) b[i] = v;
+      if (v >= 0) b[i] = v;  // finite: checked by check_element_bounds
     }
   return b;
 }
@@ -96,9 +97,7 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
   check_conformal_options(options);
   check_problem(problem, measure_name(options.measure));
   check_map(problem, start, measure_name(options.measure) + " start");
-  if (options.element_bounds.size() != 0 && options.element_bounds.size() != problem.num_elements())
-    throw InputError(measure_name(options.measure) + ": " + std::to_string(options.element_bounds.size()) +
-                     " element bounds for " + std::to_string(problem.num_elements()) + " elements");
+  check_element_bounds(options.element_bounds, problem.num_elements(), measure_name(options.measure));
   // 1. The cones' affine parts and the start.
   const qc::ConformalParts parts = qc::conformal_parts(problem);
   Eigen::VectorXd x = problem.free_dofs(start);
