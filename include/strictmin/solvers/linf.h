@@ -30,8 +30,8 @@ struct LinfOptions {
   double feasibility_tolerance = 1e-8;
   int max_iterations = 100;
   // Per-element fixed bounds k_T (size #E; a negative value means "free element", bounded by
-  // k; NaN, inf and values above 1e100 are refused). Empty: every element is free. Passed by the strict-minimizer
-  // algorithms.
+  // k; NaN, inf and values above 1e100 are refused). Empty: every element is free. Passed by
+  // the strict-minimizer algorithms.
   Eigen::VectorXd element_bounds;
   // Paper Section 5.1 (a): among the L-infinity minimizers, return the one with the least
   // area-weighted L2 field deviation (a second solve with D_T <= k*).
