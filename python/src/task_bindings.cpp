@@ -157,6 +157,16 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   return out;
 }
 
+// integer_grid=True: the rounding's account as attributes, as the docstring says (the
+// summary's keys of the same names).
+void add_integer_grid_attributes(py::dict& out, const GParamOutcome& g) {
+  out["integer_error"] = g.integer_error;
+  out["rounded_singularities"] = g.rounding.singularities;
+  out["rounded_translations"] = g.rounding.translations;
+  out["off_grid_singularities"] = g.rounding.singularities_off_grid;
+  out["off_grid_translations"] = g.rounding.translations_off_grid;
+}
+
 // field_name: "smoothest", "unit", "curvature" or "given" (then `directions`, #F by 3).
 // edge_length / quads: None for the default (about 1000 unit squares).
 py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string& method, const std::string& measure,
@@ -230,6 +240,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   out["edge_length"] = g->edge_length;
   out["seam_error"] = g->seam_error;
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
+  if (integer_grid) add_integer_grid_attributes(out, *g);
   return out;
 }
 
