@@ -114,6 +114,9 @@ def test_bad_input(closed):
         strictmin.gparam(V, F, edge_length=0)
     with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
         strictmin.gparam(V, F, edge_length=float("inf"))
+    # Out of the surface's scale: the keyword, not the command line's flag (it said --edge-length).
+    with pytest.raises(ValueError, match=r"^edge_length 1e-12 is out of scale for this surface"):
+        strictmin.gparam(V, F, edge_length=1e-12)
     with pytest.raises(ValueError, match="quads must be positive"):
         strictmin.gparam(V, F, quads=0)
     with pytest.raises(ValueError, match="not both"):
