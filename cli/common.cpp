@@ -178,6 +178,53 @@ std::filesystem::path path_key(const std::string& path) {
   return key;
 }
 
+// The files a report writes in its folder (docs/report.md): summary.json, index.html, its
+// list of files and its pictures.
+bool written_by_report(const std::filesystem::path& name) {
+  const std::string ext = lowercase_extension(name.string());
+  return name == "summary.json" || name == "index.html" || name == ".strictmin-report" || ext == ".png" ||
+         ext == ".svg";
+}
+
+// '-' is stdout for --summary and --distortion only; the task's own outputs (-o, --field-out,
+// --cones-out) are files (a file named '-' was written before).
+void refuse_stdout_for_files(const std::vector<std::pair<std::string, std::string>>& task_outputs) {
+  for (const auto& [flag, path] : task_outputs)
+    if (path == "-")
+      throw InputError(flag + " -: writes a file ('-' for stdout is taken by --summary and --distortion only); "
+                       "give a file name");
+}
+
+// The report folder, before the solve: it is or can become a folder (its nearest existing
+// ancestor is a folder), no other output is that path, and no other output is one of the
+// files the report writes there (it would replace it; --summary DIR/summary.json excepted:
+// the report writes the same summary).
+void check_report_folder(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("--report " + dir + ": is a file, not a folder");
+  for (fs::path up = fs::absolute(dir, ec).lexically_normal(); !up.empty(); up = up.parent_path()) {
+    if (fs::exists(up, ec)) {
+      if (!fs::is_directory(up, ec))
+        throw InputError("--report " + dir + ": cannot be created: " + up.string() + " is a file, not a folder");
+      break;
+    }
+    if (up == up.parent_path()) break;
+  }
+  fs::path folder = path_key(dir);
+  if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
+  for (const auto& [flag, path] : outputs) {
+    if (path.empty() || path == "-") continue;
+    const fs::path key = path_key(path);
+    if (key == folder) throw InputError(flag + " " + path + ": is the --report folder; choose another name");
+    if (key.parent_path() != folder || !written_by_report(key.filename())) continue;
+    if (flag == "--summary" && key.filename() == "summary.json") continue;
+    throw InputError(flag + " " + path + ": the --report folder's own " + key.filename().string() +
+                     " (the report writes summary.json, index.html and its .png and .svg pictures there); "
+                     "choose another name");
+  }
+}
+
 }  // namespace
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -212,9 +259,8 @@ void check_run_outputs(const OutputOptions& out, const std::vector<std::pair<std
       if (!input.empty() && input != "-" && same_file(path, input))
         throw InputError(flag + " " + path + ": is " + what + " (writing it would destroy it); choose another name");
   }
-  std::error_code ec;
-  if (!report_dir.empty() && fs::exists(report_dir, ec) && !fs::is_directory(report_dir, ec))
-    throw InputError("--report " + report_dir + ": is a file, not a folder");
+  refuse_stdout_for_files(task_outputs);
+  if (!report_dir.empty()) check_report_folder(report_dir, all);
 }
 
 void progress(const OutputOptions& out, const std::string& line) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "common.h"
+#include "strictmin/io/input_error.h"
 #include "strictmin/report/html_report.h"
 
 namespace strictmin::cli {
@@ -51,6 +52,7 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
                                 const Mesh& mesh, const GParamOutcome& g) {
   std::error_code ec;
   std::filesystem::create_directories(a.dir, ec);
+  if (ec) throw InputError("--report " + a.dir + ": cannot create the folder: " + ec.message());
   const std::string method = summary.value("method", std::string("l2"));
   MethodRun run = method_run(method, g);
   const auto pictures = write_gparam_pictures(a.dir, method, mesh, g, section_colour_scale({run}, a.scale));

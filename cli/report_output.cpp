@@ -84,8 +84,10 @@ std::string write_report_folder(const ReportArgs& a, const nlohmann::json& summa
   std::error_code ec;
   fs::create_directories(a.dir, ec);
   if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
+  nlohmann::json with_provenance = summary;
+  add_provenance_summary(with_provenance);  // as --summary writes it (the same file when both name it)
   write_file_atomically((fs::path(a.dir) / "summary.json").string(),
-                        [&](std::ostream& os) { os << summary.dump(2) << '\n'; });
+                        [&](std::ostream& os) { os << with_provenance.dump(2) << '\n'; });
   ComparisonOptions o;
   o.scale = a.scale;
   o.picture_width = 520;

@@ -202,7 +202,50 @@ TEST(ConeFile, RoundTripAndErrorsNameTheLine) {
   expect_input_error([&] { read_cone_file(write("1e300\n"), 1); }, {"line 1", "too large"});
   expect_input_error([&] { read_cone_file(write("3.14159265358979 1\n"), 1); }, {"line 1", "one number"});
   EXPECT_EQ(read_cone_file(write("# a comment\n4.71238898038469  # index 1/4\n\n"), 1), std::vector<int>{1});
+  // The whole word is the number: a NUL byte ended the reading (the rest was ignored), and a
+  // bad word is quoted shortened with its control bytes escaped (it reached the terminal whole).
+  constexpr char kNul[] = "6.283185307179586\0junk\n";
+  expect_input_error([&] { read_cone_file(write(std::string(kNul, sizeof kNul - 1)), 1); },
+                     {"line 1", "'6.283185307179586\\x00junk' is not a number"});
+  const std::string escape = "\x1b[31m" + std::string(100, 'x');
+  try {
+    read_cone_file(write(escape + "\n"), 1);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'\\x1b[31mxxx"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\x1b'), std::string::npos) << what;
+    EXPECT_LT(what.size(), 120u) << what;
+  }
   std::filesystem::remove_all(dir);
+}
+
+TEST(FieldFile, TheWholeWordIsTheNumber) {
+  const auto dir = std::filesystem::temp_directory_path() / "strictmin_field_file";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "field.txt").string();
+  constexpr char kNul[] = "1 0 0\n1\0zz 0 0\n";
+  std::ofstream(path) << std::string(kNul, sizeof kNul - 1);
+  expect_input_error([&] { read_field_file(path, 2); }, {"line 2", "face 1", "'1\\x00zz' is not a number"});
+  std::filesystem::remove_all(dir);
+}
+
+// Cones given in code (GParamOptions::cones, Python's cones=) are held to the cone file's
+// range: a total angle 2 pi - q pi/2 that is positive (q <= 3) and at most 2 pi + 10,000
+// quarter turns. They were taken as they came (q = 100000 was solved).
+TEST(ConeField, ConesOutOfTheFilesRangeAreRefused) {
+  const Mesh cube = make_cube_surface(3);
+  for (int q : {4, 100000, -10001}) {
+    std::vector<int> cones(cube.num_vertices(), 0);
+    cones[0] = q;
+    cones[1] = 8 - q;  // the sum is still 4 chi = 8
+    GParamOptions o;
+    o.solver.method = Method::L2;
+    o.cones = cones;
+    o.field_source = "cones";
+    expect_input_error([&] { global_parametrize(cube, o); },
+                       {"cones: vertex 0: the index " + std::to_string(q) + "/4", "-10000 <= q <= 3"});
+  }
 }
 
 // --parallel on the small shared meshes (genus 0 and 4), measured 2026-11-26: E cow 3033 ->

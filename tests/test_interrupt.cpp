@@ -11,6 +11,7 @@
 #include "strictmin/mesh/polycube.h"
 #include "strictmin/solvers/local_global.h"
 #include "strictmin/tasks/gparam.h"
+#include "strictmin/tasks/integer_grid.h"
 #include "strictmin/tasks/method.h"
 #include "test_meshes.h"
 
@@ -56,6 +57,20 @@ TEST(Interrupt, GlobalParametrizationStopsInItsField) {
     EXPECT_THROW(global_parametrize(cube, o), Interrupted) << (unit ? "unit" : "smoothest");
     EXPECT_EQ(phases, 1) << "only the surface graph's line: the field stopped";
   }
+}
+
+// The integer grid's rounding (tens of L2 solves: 2 s on horse) stops at its next step: Ctrl-C
+// waited for the whole rounding before.
+TEST(Interrupt, IntegerGridRoundingStops) {
+  const Mesh cube = make_cube_surface(3);
+  GParamOptions o;
+  o.solver.method = Method::L2;
+  o.edge_length = 2.0;
+  GParamOutcome g = global_parametrize(cube, o);  // the graph, cut, singularities and problem
+  std::atomic<bool> stop{true};
+  InterruptScope scope(stop);
+  Problem problem = g.problem;
+  EXPECT_THROW(round_to_integer_grid(cube, g.graph, g.cut, g.singular, g.edge_length, problem), Interrupted);
 }
 
 // The quasiconformal and isometric solves (their own cone programs, src/solvers/qc) stop too:

@@ -157,6 +157,25 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   return out;
 }
 
+// The library names its options by their command-line flags where only it can check them
+// (an edge length out of the surface's scale, which needs the surface's area): here they are
+// keywords.
+std::string with_keyword_names(std::string message) {
+  const std::string flag = "--edge-length";
+  if (message.rfind(flag, 0) == 0) message.replace(0, flag.size(), "edge_length");
+  return message;
+}
+
+// integer_grid=True: the rounding's account as attributes, as the docstring says (the
+// summary's keys of the same names).
+void add_integer_grid_attributes(py::dict& out, const GParamOutcome& g) {
+  out["integer_error"] = g.integer_error;
+  out["rounded_singularities"] = g.rounding.singularities;
+  out["rounded_translations"] = g.rounding.translations;
+  out["off_grid_singularities"] = g.rounding.singularities_off_grid;
+  out["off_grid_translations"] = g.rounding.translations_off_grid;
+}
+
 // field_name: "smoothest", "unit", "curvature" or "given" (then `directions`, #F by 3).
 // edge_length / quads: None for the default (about 1000 unit squares).
 py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string& method, const std::string& measure,
@@ -211,10 +230,14 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   options.solver = o.solver;
   options.local_global = o.local_global;
   std::optional<GParamOutcome> g;
-  run_released([&] {
-    const auto threads = limit_threads(o.threads);
-    g = global_parametrize(mesh, options, "mesh");
-  });
+  try {
+    run_released([&] {
+      const auto threads = limit_threads(o.threads);
+      g = global_parametrize(mesh, options, "mesh");
+    });
+  } catch (const InputError& e) {
+    throw InputError(with_keyword_names(e.what()));
+  }
   nlohmann::json s = gparam_summary(mesh, options, *g, field_name, {});
   s["time_s"] = seconds_since(t0);
   add_provenance_summary(s);
@@ -230,6 +253,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   out["edge_length"] = g->edge_length;
   out["seam_error"] = g->seam_error;
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
+  if (integer_grid) add_integer_grid_attributes(out, *g);
   return out;
 }
 

@@ -320,6 +320,8 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
         raise TypeError("integer_grid must be True or False")
     if cones is not None:
         cones = np.asarray(cones)
+        if cones.size == 0 and cones.ndim == 1:
+            cones = cones.astype(np.int64)  # [] is float64 to numpy: let the count be the message
         if cones.dtype.kind not in "iu" or cones.ndim != 1:
             raise ValueError(f"cones must be a 1-D array of integers (indices in quarters), got dtype {cones.dtype}, "
                              f"shape {cones.shape}")

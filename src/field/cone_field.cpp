@@ -186,6 +186,16 @@ void check_cone_sum(const SurfaceGraph& g, const std::vector<int>& quarters, con
 
 }  // namespace
 
+void check_cone_indices(const std::vector<int>& quarters, const std::string& where) {
+  constexpr int kMostQuarters = 10000;
+  for (size_t v = 0; v < quarters.size(); ++v)
+    if (quarters[v] >= 4 || quarters[v] < -kMostQuarters)
+      throw InputError(where + ": vertex " + std::to_string(v) + ": the index " + std::to_string(quarters[v]) +
+                       "/4 is not a cone's (its total angle 2 pi - q pi/2 must be positive and at most 2 pi + " +
+                       std::to_string(kMostQuarters) + " quarter turns: -" + std::to_string(kMostQuarters) +
+                       " <= q <= 3)");
+}
+
 CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
                             const std::vector<int>& quarters, const CrossFieldOptions& options,
                             const std::string& source) {

@@ -26,18 +26,21 @@ std::vector<int> read_cone_file(const std::string& path, int num_vertices) {
     std::string word, extra;
     if (!(words >> word)) continue;
     if (words >> extra) throw InputError(located(path, line, "expected one number (the vertex's total angle), found more"));
-    char* end = nullptr;
-    const double angle = std::strtod(word.c_str(), &end);
-    if (end == word.c_str() || *end != '\0') throw InputError(located(path, line, "'" + word + "' is not a number"));
+    // The whole word is the number (a NUL byte inside it would end strtod's reading early),
+    // and it is quoted shortened, its control bytes escaped.
+    double angle = 0;
+    if (!io_detail::parse_double(word, angle))
+      throw InputError(located(path, line, io_detail::quote_token(word) + " is not a number"));
+    const std::string shown = io_detail::quote_token(word);
     const double q = (2 * std::numbers::pi - angle) / kQuarter;
     // Beyond -kMostQuarters a cone is not one a field on any mesh can have (and the index
     // would not fit an int).
     constexpr double kMostQuarters = 1e4;
     if (std::isfinite(q) && q < -kMostQuarters)
-      throw InputError(located(path, line, "the angle " + word + " is too large for a cone (at most 2 pi + " +
+      throw InputError(located(path, line, "the angle " + shown + " is too large for a cone (at most 2 pi + " +
                                                std::to_string(static_cast<int>(kMostQuarters)) + " quarter turns)"));
     if (!std::isfinite(q) || std::abs(q - std::round(q)) > 1e-6 || angle <= 0)
-      throw InputError(located(path, line, "the angle " + word +
+      throw InputError(located(path, line, "the angle " + shown +
                                                " is not 2 pi minus a whole number of quarter turns (a positive angle k pi/2)"));
     if (static_cast<int>(quarters.size()) == num_vertices)
       throw InputError(located(path, line, "more angles than the mesh's " + std::to_string(num_vertices) + " vertices"));

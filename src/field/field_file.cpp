@@ -26,9 +26,8 @@ Eigen::MatrixXd read_field_file(const std::string& path, int num_faces, std::vec
     std::string word;
     std::vector<double> row;
     while (words >> word) {
-      char* end = nullptr;
-      const double v = std::strtod(word.c_str(), &end);
-      if (end == word.c_str() || *end != '\0')
+      double v = 0;  // the whole word (a NUL byte inside it would end strtod's reading early)
+      if (!io_detail::parse_double(word, v))
         throw InputError(located(path, line, "face " + std::to_string(rows) + ": " + io_detail::quote_token(word) + " is not a number"));
       row.push_back(v);
     }

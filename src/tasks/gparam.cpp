@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "strictmin/field/cone_field.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/validate.h"
 #include "strictmin/report/stats.h"
@@ -29,6 +30,7 @@ void check_options(const GParamOptions& o) {
     throw InputError("--quads must be a positive number, got " + std::to_string(o.quads));
   if (o.curvature_field && !(o.curvature_alignment > 0 && std::isfinite(o.curvature_alignment)))
     throw InputError("--curvature-alignment must be a positive number");
+  if (o.cones) check_cone_indices(*o.cones, o.field_source.empty() ? "cones" : o.field_source);
 }
 
 // The texture coordinates are the map divided by the edge length: an edge length far out of

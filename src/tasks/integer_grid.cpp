@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
 #include "tasks/bordered_l2.h"
@@ -289,6 +290,7 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   // The targets do not change while rounding: the perturbed ones are made once.
   const Problem perturbed = look_ahead ? with_perturbed_targets(problem) : Problem();
   auto solve = [&]() -> std::optional<Eigen::MatrixXd> {
+    check_interrupt();  // solvers/interrupt.h: once per step (horse's 31 solves take 2 s)
     ++out.solves;
     std::optional<Eigen::MatrixXd> X = state.l2(problem);
     if (X && look_ahead) {

@@ -345,6 +345,42 @@ class GParam(unittest.TestCase):
         self.expect_bad([self.cube, "--cones", self.write("few.txt", "".join(flat[1:]))], ["few.txt", "angles for"])
         self.expect_bad([self.cube, "--cones", self.out("flat.txt"), "--field", "unit"], ["--cones", "not both"])
 
+    def test_outputs_that_would_clobber_each_other(self):
+        """'-' is stdout for --summary and --distortion only (--cones-out - and --field-out -
+        wrote a file named '-'); the --report folder's own files are no other output's (the
+        report replaced them: a distortion file became the report's summary.json, exit 0); a
+        report folder that cannot be made is refused before the solve (it failed after the
+        other outputs were written); the report's summary.json is --summary's (it lacked the
+        version and kernels, and replaced --summary DIR/summary.json so)."""
+        cwd = os.getcwd()
+        os.chdir(self.dir)
+        try:
+            for flag in ("--cones-out", "--field-out"):
+                self.expect_bad([self.cube, flag, "-"], [flag + " -", "give a file name"])
+                self.assertFalse(os.path.exists(os.path.join(self.dir, "-")), flag)
+        finally:
+            os.chdir(cwd)
+        report = self.out("rep")
+        os.mkdir(report)
+        for flag, name in (("--distortion", "summary.json"), ("--cones-out", "index.html"),
+                           ("--field-out", "l2_field.png"), ("--field-out", "view-uv.svg")):
+            self.expect_bad([self.cube, "--report", report + "/", flag, os.path.join(report, name)],
+                            [flag, name, "the --report folder's own"])
+        self.assertEqual(os.listdir(report), [])
+        self.expect_bad([self.cube, "--report", self.out("bad.obj")], ["--output", "is the --report folder"])
+        plain = self.write("plain.txt", "not a folder\n")
+        self.expect_bad([self.cube, "--report", os.path.join(plain, "rep")], ["--report", "plain.txt is a file"])
+        with open(plain) as f:
+            self.assertEqual(f.read(), "not a folder\n")
+        summary = os.path.join(report, "summary.json")
+        run("gparam", self.cube, "--report", report, "--summary", summary, "--cones-out",
+            os.path.join(report, "cones.txt"), "--quiet")
+        with open(summary) as f:
+            s = json.load(f)
+        self.assertIn("version", s)
+        self.assertIn("blas_kernels", s)
+        self.assertTrue(os.path.exists(os.path.join(report, "cones.txt")))
+
     def test_arap_relax_and_extrapolation_off(self):
         # --measure arap --method relax on a seamed surface (it failed after its linf start);
         # --lg-extrapolation 0 turns the extrapolation off (it was refused). A cube with its

@@ -114,6 +114,9 @@ def test_bad_input(closed):
         strictmin.gparam(V, F, edge_length=0)
     with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
         strictmin.gparam(V, F, edge_length=float("inf"))
+    # Out of the surface's scale: the keyword, not the command line's flag (it said --edge-length).
+    with pytest.raises(ValueError, match=r"^edge_length 1e-12 is out of scale for this surface"):
+        strictmin.gparam(V, F, edge_length=1e-12)
     with pytest.raises(ValueError, match="quads must be positive"):
         strictmin.gparam(V, F, quads=0)
     with pytest.raises(ValueError, match="not both"):
@@ -163,3 +166,22 @@ def test_integer_grid_matches_cli(tmp_path, closed):
     assert r.summary["rounded_singularities"] >= len(r.singularities) - 1
     with pytest.raises(TypeError, match="integer_grid must be True or False"):
         strictmin.gparam(V, F, integer_grid=1)
+    # The rounding's account as attributes, as the docstring says (they were in summary only).
+    for key in ("integer_error", "rounded_singularities", "rounded_translations", "off_grid_singularities",
+                "off_grid_translations"):
+        assert getattr(r, key) == summary[key], key
+    assert not hasattr(strictmin.gparam(V, F, quads=60), "integer_error")
+
+
+def test_cones_out_of_range_and_empty(closed):
+    """cones= is held to the cone file's range (-10000 <= q <= 3: a positive total angle, at
+    most 10,000 quarter turns beyond 2 pi); q = 100000 was solved. An empty list names the
+    count (it said 'got dtype float64')."""
+    _, V, F = closed
+    for q in (4, 100000, -10001):
+        cones = np.zeros(len(V), dtype=int)
+        cones[0], cones[1] = q, 8 - q
+        with pytest.raises(ValueError, match=rf"cones: vertex 0: the index {q}/4 .*-10000 <= q <= 3"):
+            strictmin.gparam(V, F, cones=cones)
+    with pytest.raises(ValueError, match=f"cones: 0 cone indices for {len(V)} vertices"):
+        strictmin.gparam(V, F, cones=[])

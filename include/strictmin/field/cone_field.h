@@ -41,4 +41,9 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& graph, const F
 std::vector<int> read_cone_file(const std::string& path, int num_vertices);
 void write_cone_file(const std::string& path, const std::vector<int>& quarters);
 
+// Cones asked for (a cone file's, GParamOptions::cones) must be ones a surface can have: a
+// total angle 2 pi - q pi/2 that is positive and at most 2 pi + 10,000 quarter turns, i.e.
+// -10000 <= q <= 3, as the cone file's angles. Throws InputError naming `where` and the vertex.
+void check_cone_indices(const std::vector<int>& quarters, const std::string& where);
+
 }  // namespace strictmin
