@@ -22,7 +22,7 @@ namespace strictmin::cli {
 namespace {
 
 struct GParamArgs {
-  std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out;
+  std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out, grid_guide;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
   bool edge_length_given = false, quads_given = false, curvature_alignment_given = false, parallel = false, integer_grid = false;
@@ -59,6 +59,12 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   o.curvature_alignment = a.curvature_alignment;
   o.parallel_field = a.parallel;
   o.integer_grid = a.integer_grid;
+  if (!a.grid_guide.empty()) {
+    if (!a.integer_grid) throw InputError("--grid-guide applies to --integer-grid only");
+    if (a.grid_guide != "l2" && a.grid_guide != "linf")
+      throw InputError("--grid-guide takes l2 or linf, not '" + a.grid_guide + "'");
+    o.grid_guide = a.grid_guide == "linf" ? GParamOptions::GridGuide::Linf : GParamOptions::GridGuide::L2;
+  }
   if (!a.cones.empty()) {
     if (a.field != "smoothest") throw InputError("give --cones or --field " + a.field + ", not both");
     o.cones = read_cone_file(a.cones, mesh.num_vertices());
@@ -151,6 +157,10 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--integer-grid", args->integer_grid,
                 "Round the singular vertices and the seam translations to the grid of the edge length first (greedy, "
                 "with L2 solves between the steps), so that the map's integer lines close up into a quad mesh");
+  cmd->add_option("--grid-guide", args->grid_guide,
+                  "--integer-grid: the map whose values the rounding follows: l2 (default, the seamless L2 map) or linf "
+                  "(the free L-infinity map, one solve more: as the grid shrinks the map tends to the L-infinity "
+                  "optimum; often fewer flips, docs/gparam.md)");
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();

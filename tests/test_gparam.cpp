@@ -876,6 +876,35 @@ TEST(IntegerGrid, SurfacesWithHandlesRoundCompletely) {
   }
 }
 
+// The rounding's guide. On a grid far finer than the surface's features the integer
+// constraints cost almost nothing, so a rounding that follows the free L-infinity map ends
+// within the rounding's moves of that map's maximum; the L2 guide holds the singular vertices
+// where the L2 map has them, and on the bulged frame and on cow that costs far more.
+void expect_linf_guide_recovers_the_free_optimum(const Mesh& mesh, GParamOptions o, double edge_length,
+                                                 double l2_guide_excess, const std::string& name) {
+  o.solver.method = Method::Linf;
+  o.edge_length = edge_length;
+  const double free_max = global_parametrize(mesh, o).measured.stats.max;
+  o.integer_grid = true;
+  const GParamOutcome by_l2 = global_parametrize(mesh, o);
+  o.grid_guide = GParamOptions::GridGuide::Linf;
+  const GParamOutcome by_linf = global_parametrize(mesh, o);
+  ASSERT_EQ(by_linf.result.status, SolveStatus::Solved) << name << ": " << by_linf.result.message;
+  EXPECT_LT(by_linf.integer_error, 1e-6) << name;
+  EXPECT_LT(by_linf.seam_error, 1e-9) << name;
+  EXPECT_NEAR(by_linf.measured.stats.max, free_max, 1e-4 * free_max) << name;
+  EXPECT_GT(by_l2.measured.stats.max, l2_guide_excess * free_max) << name << ": the L2 guide no longer costs more here";
+  std::printf("%s: free %.6f, L2 guide %.6f, L-infinity guide %.6f\n", name.c_str(), free_max, by_l2.measured.stats.max,
+              by_linf.measured.stats.max);
+}
+
+TEST(IntegerGrid, TheLinfGuideTendsToTheFreeOptimumOnAFineGrid) {
+  // free 0.027459: the L2 guide 0.027545, the L-infinity guide 0.027459
+  expect_linf_guide_recovers_the_free_optimum(make_bulged_frame_surface(4, 7), {}, 1e-5, 1.002, "bulged frame");
+  if (const Mesh* cow = shared_closed_mesh("cow"))
+    expect_linf_guide_recovers_the_free_optimum(*cow, {}, 1e-6, 3.0, "cow");  // 0.4643 against 1.5468
+}
+
 // --integer-grid at any units: the surface far from unit size is rounded at the unit size's
 // edge length, so the texture coordinates are the same grid map (the bulged frame, whose
 // optimum is not on the grid by itself).

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "strictmin/field/cone_field.h"
@@ -12,6 +13,7 @@
 #include "strictmin/report/stats.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/l2.h"
+#include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
 #include "tasks/unit_size.h"
@@ -158,10 +160,38 @@ Result solve_unit_size(const GParamOptions& o, const UnitSize& unit) {
 // --integer-grid: the problem that is solved (the surface at unit size) is rounded to the grid
 // of the edge length at that size; out.problem, in surface units, takes the same constraints
 // scaled back when the two differ.
+// The problem the rounding's L2 solves are made on: the seamless problem itself (the L2
+// guide), or the same with each element's target replaced by the free L-infinity map's
+// Jacobian (the Linf guide), whose L2 map is that map: the steps then move the guide's
+// values by the L2 response to the rounding. Null when the guide's solve is not usable (the
+// L2 guide is used, and progress says so).
+std::optional<Problem> guided_rounding_problem(const GParamOptions& o, const Problem& solved) {
+  if (o.grid_guide != GParamOptions::GridGuide::Linf) return std::nullopt;
+  const Result guide = solve_linf(solved);
+  if (!guide.usable()) {
+    say(o, "integer grid: the L-infinity guide ended " + status_name(guide.status) + "; the rounding follows the L2 map");
+    return std::nullopt;
+  }
+  say(o, "integer grid: the rounding follows the L-infinity map (max " + std::to_string(guide.distortion.maxCoeff()) +
+             ", " + fixed(guide.time_s) + " s)");
+  Problem guided = solved;
+  const int n = solved.image_dim;
+  for (int e = 0; e < solved.num_elements(); ++e)
+    guided.targets.middleRows(e * n, n) = solved.jacobian(e, guide.positions);
+  return guided;
+}
+
 void round_unit_problem(const GParamOptions& o, const UnitSize& unit, Problem& solved, GParamOutcome& out) {
-  out.rounding =
-      round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale, solved, o.progress,
-                            o.integer_grid_options);
+  std::optional<Problem> guided = guided_rounding_problem(o, solved);
+  Problem& rounded = guided ? *guided : solved;
+  out.rounding = round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale,
+                                       rounded, o.progress, o.integer_grid_options);
+  if (guided) {  // the rounding's holds, on the problem with the surface's own targets
+    solved.eq_matrix = guided->eq_matrix;
+    solved.eq_rhs = guided->eq_rhs;
+    solved.fixed = guided->fixed;
+    solved.positions = guided->positions;
+  }
   if (&solved == &out.problem) return;
   out.problem.eq_matrix = solved.eq_matrix;
   out.problem.eq_rhs = solved.eq_rhs * unit.scale;

@@ -133,9 +133,19 @@ class GParam(unittest.TestCase):
                         "--field", field_file)
         self.assertGreater(s["lower_bound"], 1e-2)
         self.assertLess(s["integer_error"], 1e-9)
+        self.assertEqual(s["grid_guide"], "l2")
+        # The L-infinity guide: the same corners on the grid, the guide in the summary.
+        s = self.gparam(self.cube, "-o", out, "--method", "linf", "--edge-length", "0.5", "--integer-grid",
+                        "--field", field_file, "--grid-guide", "linf")
+        self.assertEqual(s["grid_guide"], "linf")
+        self.assertLess(s["integer_error"], 1e-9)
+        self.assertLess(s["max_distortion"], 1e-6)
         s = self.gparam(self.cube, "-o", out, "--edge-length", "0.8")
         self.assertFalse(s["integer_grid"])
         self.assertNotIn("integer_error", s)
+        self.assertNotIn("grid_guide", s)
+        self.expect_bad([self.cube, "--grid-guide", "linf"], ["--grid-guide applies to --integer-grid only"])
+        self.expect_bad([self.cube, "--integer-grid", "--grid-guide", "l1"], ["--grid-guide takes l2 or linf, not 'l1'"])
 
     def test_field_round_trip(self):
         field = self.out("field.txt")

@@ -44,6 +44,13 @@ struct GParamOptions {
   // the edge length before the method's solve (tasks/integer_grid.h).
   bool integer_grid = false;
   IntegerGridOptions integer_grid_options;  // the rounding's (its look-ahead)
+  // --grid-guide: the map whose values the rounding follows. L2: the seamless L2 map (as
+  // MIQ does). Linf: the free L-infinity map (fd), one solve more: the rounding's L2 solves
+  // then take its Jacobians as their targets, so that as the grid shrinks the rounded map
+  // tends to the L-infinity optimum rather than to the L2 map held at its singular vertices
+  // (docs/gparam.md, "The rounding's guide").
+  enum class GridGuide { L2, Linf };
+  GridGuide grid_guide = GridGuide::L2;
   CrossFieldOptions field_options;
   SolverOptions solver;
   LocalGlobalOptions local_global;
