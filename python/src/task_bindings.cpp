@@ -182,7 +182,8 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
                    const std::string& field_name, const std::optional<RowMatrixXd>& directions,
                    const std::optional<double>& edge_length, const std::optional<int>& quads,
                    double curvature_alignment, bool parallel, const std::optional<std::vector<int>>& cones,
-                   bool integer_grid, const py::dict& kwargs, const py::object& progress) {
+                   bool integer_grid, const std::string& grid_guide, const py::dict& kwargs,
+                   const py::object& progress) {
   const auto t0 = Clock::now();
   TaskOptions o = parse_options(Task::GParam, "gparam", method, kwargs);
   GParamOptions options;
@@ -205,6 +206,9 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   options.field_options.unit = field_name == "unit";
   options.parallel_field = parallel;
   options.integer_grid = integer_grid;
+  if (grid_guide != "l2" && grid_guide != "linf")
+    throw InputError("grid_guide takes 'l2' or 'linf', not '" + grid_guide + "'");
+  options.grid_guide = grid_guide == "linf" ? GParamOptions::GridGuide::Linf : GParamOptions::GridGuide::L2;
   if (cones) {
     if (field_name != "smoothest") throw InputError("give cones or field, not both");
     options.cones = *cones;
@@ -253,7 +257,10 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   out["edge_length"] = g->edge_length;
   out["seam_error"] = g->seam_error;
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
-  if (integer_grid) add_integer_grid_attributes(out, *g);
+  if (integer_grid) {
+    add_integer_grid_attributes(out, *g);
+    out["grid_guide"] = grid_guide;
+  }
   return out;
 }
 
@@ -314,7 +321,8 @@ void bind_tasks(py::module_& m) {
         py::arg("progress"));
   m.def("gparam", &gparam_py, py::arg("V"), py::arg("F"), py::arg("method"), py::arg("measure"), py::arg("field"),
         py::arg("directions"), py::arg("edge_length"), py::arg("quads"), py::arg("curvature_alignment"),
-        py::arg("parallel"), py::arg("cones"), py::arg("integer_grid"), py::arg("options"), py::arg("progress"));
+        py::arg("parallel"), py::arg("cones"), py::arg("integer_grid"), py::arg("grid_guide"), py::arg("options"),
+        py::arg("progress"));
   m.def("interp", &interp_py, py::arg("V"), py::arg("F"), py::arg("V_target"), py::arg("t"), py::arg("method"),
         py::arg("options"), py::arg("progress"));
 }

@@ -267,7 +267,8 @@ def param(V, F, method="linf", measure="arap", init=None, *, progress=None, verb
 
 
 def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=None,
-           parallel=False, cones=None, integer_grid=False, progress=None, verbose=False, **options):
+           parallel=False, cones=None, integer_grid=False, grid_guide=None, progress=None, verbose=False,
+           **options):
     """Globally parametrize a closed manifold triangle surface (one component, any genus)
     guided by a cross field, with seams as linear constraints (the paper's Appendix A;
     docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
@@ -279,7 +280,9 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     edge_length: the surface length that maps to 1 in UV, or quads: about that many unit
     squares (default 1000); integer_grid: round the singular vertices and the seam
     translations to that grid first (the CLI's --integer-grid; the Result then has
-    ``integer_error``, ``rounded_singularities``, ``off_grid_translations``, ...). Options: the command line's flags with underscores. Returns a
+    ``integer_error``, ``rounded_singularities``, ``off_grid_translations``, ``grid_guide``, ...);
+    grid_guide: with integer_grid, the map the rounding follows, "l2" (default) or "linf" (the
+    CLI's --grid-guide). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
     into uv), ``singularities`` [(vertex, index in quarters)], ``field`` (#F by 3, the field
     used), ``euler_characteristic``, ``edge_length``, ``seam_error``."""
@@ -318,6 +321,12 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
         raise TypeError("parallel must be True or False")
     if not isinstance(integer_grid, bool):
         raise TypeError("integer_grid must be True or False")
+    if grid_guide is None:
+        grid_guide = "l2"
+    elif not integer_grid:
+        raise ValueError("grid_guide applies to integer_grid=True only")
+    else:
+        grid_guide = _text(grid_guide, "grid_guide")
     if cones is not None:
         cones = np.asarray(cones)
         if cones.size == 0 and cones.ndim == 1:
@@ -329,7 +338,8 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
             raise ValueError("cones: an index is out of range")
         cones = [int(q) for q in cones]
     return Result(_strictmin.gparam(V, F, _text(method, "method"), _text(measure, "measure"), field, directions,
-                                    edge_length, quads, curvature_alignment, parallel, cones, integer_grid, options,
+                                    edge_length, quads, curvature_alignment, parallel, cones, integer_grid,
+                                    grid_guide, options,
                                     _progress(progress, verbose)))
 
 

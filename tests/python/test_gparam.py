@@ -171,6 +171,24 @@ def test_integer_grid_matches_cli(tmp_path, closed):
                 "off_grid_translations"):
         assert getattr(r, key) == summary[key], key
     assert not hasattr(strictmin.gparam(V, F, quads=60), "integer_error")
+    assert r.grid_guide == "l2" == summary["grid_guide"]
+
+
+def test_integer_grid_linf_guide_matches_cli(tmp_path, closed):
+    # grid_guide="linf" (the CLI's --grid-guide linf): the same map as the command line's, on
+    # the grid; refused without integer_grid and for a name other than l2 / linf.
+    mesh, V, F = closed
+    summary, dist = cli_run(tmp_path, ["gparam", mesh, "--method", "linf", "--quads", 60, "--integer-grid",
+                                       "--grid-guide", "linf"])
+    r = strictmin.gparam(V, F, method="linf", quads=60, integer_grid=True, grid_guide="linf")
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.grid_guide == "linf" == r.summary["grid_guide"]
+    assert r.integer_error < 1e-9
+    with pytest.raises(ValueError, match="grid_guide applies to integer_grid=True only"):
+        strictmin.gparam(V, F, grid_guide="linf")
+    with pytest.raises(ValueError, match="grid_guide takes 'l2' or 'linf', not 'l1'"):
+        strictmin.gparam(V, F, integer_grid=True, grid_guide="l1")
 
 
 def test_cones_out_of_range_and_empty(closed):
