@@ -59,7 +59,8 @@ Result solve_exact(const Problem& p, const ExactOptions& options, const LinfOpti
     throw InputError("the exact strict minimizer needs up to one L-infinity solve per element and level; " +
                      std::to_string(p.num_elements()) + " elements is above its limit of " +
                      std::to_string(options.max_elements) +
-                     " (--exact-max-elements; use --method direct or relax, or raise that limit)");
+                     " (ExactOptions::max_elements: --exact-max-elements on the command line, exact_max_elements in "
+                     "Python; use the method direct or relax, or raise that limit)");
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<char> movable = movable_elements(p);
   int undecided = 0;

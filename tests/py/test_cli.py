@@ -261,7 +261,8 @@ class Deform(unittest.TestCase):
     def test_exact_size_limit_names_its_flag(self):
         # The limit is --exact-max-elements: the message only said "use --method direct or relax".
         p = run("deform", "--example", "square", "--method", "exact", "--exact-max-elements", "10", check_code=1)
-        self.assertIn("800 elements is above its limit of 10 (--exact-max-elements;", p.stderr)
+        self.assertIn("800 elements is above its limit of 10 (ExactOptions::max_elements: --exact-max-elements on the "
+                      "command line, exact_max_elements in Python;", p.stderr)
 
     def test_failed_run_leaves_no_output(self):
         out = os.path.join(self.dir, "never.obj")

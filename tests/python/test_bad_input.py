@@ -104,6 +104,9 @@ def test_options(square):
         strictmin.deform(V, F, idx, pos, gap=2)
     with pytest.raises(ValueError, match="^delta_k: .*delta_k must be > 0"):
         strictmin.deform(V, F, idx, pos, method="direct", delta_k=0)
+    # exact's size limit names the keyword too (the message named only the CLI's flag).
+    with pytest.raises(ValueError, match="18 elements is above its limit of 10 .*exact_max_elements in Python"):
+        strictmin.deform(V, F, idx, pos, method="exact", exact_max_elements=10)
     with pytest.raises(ValueError, match="^sweeps: "):
         strictmin.deform(V, F, idx, pos, sweeps=-1)
     with pytest.raises(ValueError, match="^accept_tolerance: "):
