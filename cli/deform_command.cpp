@@ -34,6 +34,7 @@ int run_deform(const DeformArgs& a) {
   const auto measure = parse_measure(a.measure);
   if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
   options.measure = *measure;
+  refuse_local_global_flags(a.lg, options.measure);
   if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
   options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
   apply_local_global_options(a.lg, options.local_global);
@@ -107,7 +108,10 @@ void add_deform_command(CLI::App& app, int& exit_code) {
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, &exit_code] { exit_code = run_deform(*args); });
+  cmd->callback([args, cmd, &exit_code] {
+    note_local_global_flags(*cmd, args->lg);
+    exit_code = run_deform(*args);
+  });
 }
 
 }  // namespace strictmin::cli

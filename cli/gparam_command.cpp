@@ -43,6 +43,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (!measure || (*measure != Measure::FieldDeviation && *measure != Measure::Arap))
     throw InputError("--measure: unknown or unavailable measure '" + a.measure + "' for gparam (use fd or arap)");
   o.measure = *measure;
+  refuse_local_global_flags(a.lg_steps, o.measure);
   if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
   if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
     throw InputError("--edge-length must be a positive finite number, got " + shown_number(a.edge_length));
@@ -178,6 +179,7 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
     args->edge_length_given = cmd->count("--edge-length") > 0;
     args->quads_given = cmd->count("--quads") > 0;
     args->curvature_alignment_given = cmd->count("--curvature-alignment") > 0;
+    note_local_global_flags(*cmd, args->lg_steps);
     exit_code = run_gparam(*args);
   });
 }

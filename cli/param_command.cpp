@@ -61,6 +61,7 @@ int run_param(ParamArgs a) {
   const auto measure = parse_measure(a.measure);
   if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use arap, asap, fd, qc or iso)");
   options.measure = *measure;
+  refuse_local_global_flags(a.lg, options.measure);
   check_init_agrees_with_start_method(a.solver.method, a.solver.init);
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {
@@ -126,7 +127,10 @@ void add_param_command(CLI::App& app, int& exit_code) {
       ->default_str("tutte");
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, &exit_code] { exit_code = run_param(*args); });
+  cmd->callback([args, cmd, &exit_code] {
+    note_local_global_flags(*cmd, args->lg);
+    exit_code = run_param(*args);
+  });
 }
 
 }  // namespace strictmin::cli

@@ -124,6 +124,18 @@ void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o)
   apply_local_global_step_options(a, o);
 }
 
+void note_local_global_flags(const CLI::App& cmd, LocalGlobalArgs& a) {
+  a.given.clear();
+  for (const char* flag : {"--lg-iterations", "--lg-tolerance", "--lg-acceleration", "--lg-extrapolation", "--lg-cold-start"})
+    if (cmd.count(flag) > 0) a.given.push_back(flag);
+}
+
+void refuse_local_global_flags(const LocalGlobalArgs& a, Measure measure) {
+  if (a.given.empty() || measure == Measure::Arap || measure == Measure::Asap) return;
+  throw InputError(a.given.front() + " applies to --measure arap or asap (their local-global iterations), not " +
+                   measure_name(measure) + ", which takes no local steps");
+}
+
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out, const std::string& extra_names) {
   SolverOptions o;
   const std::string extra = extra_names.empty() ? "" : extra_names + ", ";

@@ -109,12 +109,19 @@ void check_task_ranges(const TaskOptions& o, Task task, const std::string& key) 
 
 }  // namespace
 
+void refuse_local_global_keys(const TaskOptions& o, Measure measure) {
+  if (o.local_global_key.empty() || measure == Measure::Arap || measure == Measure::Asap) return;
+  throw InputError(o.local_global_key + " applies to measure 'arap' or 'asap' (their local-global iterations), not '" +
+                   measure_name(measure) + "', which takes no local steps");
+}
+
 TaskOptions parse_options(Task task, const std::string& function, const std::string& method,
                           const py::dict& options) {
   TaskOptions o;
   if (task == Task::Interp) o.solver.direct.k_min = kInterpKMin;  // interp's own default (interp.h)
   for (const auto& [k, v] : options) {
     const std::string key = py::str(k);
+    if (key.rfind("lg_", 0) == 0 && o.local_global_key.empty()) o.local_global_key = key;
     if (!apply(o, task, key, v))
       throw py::type_error(function + "() got an unexpected keyword argument '" + key + "'");
     std::string why;

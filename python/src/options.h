@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "strictmin/measures/measures.h"
 #include "strictmin/solvers/local_global.h"
 #include "strictmin/tasks/method.h"
 
@@ -21,7 +22,12 @@ struct TaskOptions {
   std::string start = "l2";   // deform arap / asap: l2 or rest
   int pin = -1;               // interp: -1 the centroid, else a vertex
   int threads = 0;            // 0: all cores
+  std::string local_global_key;  // the first lg_* keyword given (refuse_local_global_keys)
 };
+
+// ValueError naming the first lg_* keyword given when the measure takes no local steps (fd,
+// qc, iso): it would be ignored (as the command line refuses its --lg-* flags).
+void refuse_local_global_keys(const TaskOptions& options, Measure measure);
 
 // method: the CLI's --method; options: the other keywords. Unknown keywords raise
 // TypeError, wrong types TypeError, values out of range ValueError naming the keyword and

@@ -264,6 +264,23 @@ class Deform(unittest.TestCase):
         self.assertIn("800 elements is above its limit of 10 (ExactOptions::max_elements: --exact-max-elements on the "
                       "command line, exact_max_elements in Python;", p.stderr)
 
+    def test_local_global_flags_need_a_local_global_measure(self):
+        # --lg-* with fd, qc or iso were accepted and ignored (no local steps to cap or tune);
+        # they are refused by name, and with arap / asap they still apply.
+        out = os.path.join(self.dir, "lg.obj")
+        for flag in (["--lg-iterations", "5"], ["--lg-tolerance", "0.1"], ["--lg-acceleration", "0"],
+                     ["--lg-extrapolation", "0"], ["--lg-cold-start"]):
+            p = run("deform", "--example", "square", *flag, "-o", out, check_code=1)
+            self.assertIn(flag[0] + " applies to --measure arap or asap", p.stderr)
+            self.assertIn("not fd", p.stderr)
+            self.assertFalse(os.path.exists(out))
+        p = run("deform", "--example", "square", "--measure", "qc", "--lg-iterations", "5", "-o", out, check_code=1)
+        self.assertIn("--lg-iterations applies to --measure arap or asap (their local-global iterations), not qc",
+                      p.stderr)
+        run("deform", "--example", "bar", "--measure", "asap", "--method", "l2", "--lg-iterations", "2", "-o", out,
+            "--quiet", check_code=2)  # the cap reached: usable, not converged
+        self.assertTrue(os.path.exists(out))
+
     def test_failed_run_leaves_no_output(self):
         out = os.path.join(self.dir, "never.obj")
         run("deform", "--example", "square", "--method", "magic", "-o", out)

@@ -286,6 +286,8 @@ class GParam(unittest.TestCase):
         fins = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"
         self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
         self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])
+        # Local-global flags with fd (no local steps) were ignored.
+        self.expect_bad([self.cube, "--lg-iterations", "3"], ["--lg-iterations applies to --measure arap or asap"])
         # Out of the surface's scale (sqrt(area) = 2.45 here): the UV would overflow (1e-320 gave
         # inf texture coordinates reported as solved) or lose every digit.
         for h in ("1e-320", "1e-12", "1e12"):

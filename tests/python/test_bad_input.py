@@ -104,6 +104,12 @@ def test_options(square):
         strictmin.deform(V, F, idx, pos, gap=2)
     with pytest.raises(ValueError, match="^delta_k: .*delta_k must be > 0"):
         strictmin.deform(V, F, idx, pos, method="direct", delta_k=0)
+    # lg_* keywords with a measure that takes no local steps were accepted and ignored.
+    with pytest.raises(ValueError, match="lg_iterations applies to measure 'arap' or 'asap' .*not 'fd'"):
+        strictmin.deform(V, F, idx, pos, lg_iterations=5)
+    with pytest.raises(ValueError, match="lg_cold_start applies to measure 'arap' or 'asap' .*not 'qc'"):
+        strictmin.param(V, F, measure="qc", lg_cold_start=True)
+    assert strictmin.deform(V, F, idx, pos, measure="arap", lg_iterations=3).positions.shape == V[:, :2].shape
     # exact's size limit names the keyword too (the message named only the CLI's flag).
     with pytest.raises(ValueError, match="18 elements is above its limit of 10 .*exact_max_elements in Python"):
         strictmin.deform(V, F, idx, pos, method="exact", exact_max_elements=10)
