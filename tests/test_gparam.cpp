@@ -890,6 +890,8 @@ void expect_linf_guide_recovers_the_free_optimum(const Mesh& mesh, GParamOptions
   o.grid_guide = GParamOptions::GridGuide::Linf;
   const GParamOutcome by_linf = global_parametrize(mesh, o);
   ASSERT_EQ(by_linf.result.status, SolveStatus::Solved) << name << ": " << by_linf.result.message;
+  EXPECT_EQ(by_linf.grid_guide, GParamOptions::GridGuide::Linf) << name << ": the guide's solve was not usable";
+  EXPECT_EQ(by_l2.grid_guide, GParamOptions::GridGuide::L2) << name;
   EXPECT_LT(by_linf.integer_error, 1e-6) << name;
   EXPECT_LT(by_linf.seam_error, 1e-9) << name;
   EXPECT_NEAR(by_linf.measured.stats.max, free_max, 1e-4 * free_max) << name;

@@ -262,7 +262,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
   if (integer_grid) {
     add_integer_grid_attributes(out, *g);
-    out["grid_guide"] = grid_guide;
+    out["grid_guide"] = g->grid_guide == GParamOptions::GridGuide::Linf ? "linf" : "l2";  // the one followed
   }
   return out;
 }

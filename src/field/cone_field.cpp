@@ -187,12 +187,11 @@ void check_cone_sum(const SurfaceGraph& g, const std::vector<int>& quarters, con
 }  // namespace
 
 void check_cone_indices(const std::vector<int>& quarters, const std::string& where) {
-  constexpr int kMostQuarters = 10000;
   for (size_t v = 0; v < quarters.size(); ++v)
-    if (quarters[v] >= 4 || quarters[v] < -kMostQuarters)
+    if (quarters[v] >= 4 || quarters[v] < -kMostConeQuarters)
       throw InputError(where + ": vertex " + std::to_string(v) + ": the index " + std::to_string(quarters[v]) +
                        "/4 is not a cone's (its total angle 2 pi - q pi/2 must be positive and at most 2 pi + " +
-                       std::to_string(kMostQuarters) + " quarter turns: -" + std::to_string(kMostQuarters) +
+                       std::to_string(kMostConeQuarters) + " quarter turns: -" + std::to_string(kMostConeQuarters) +
                        " <= q <= 3)");
 }
 

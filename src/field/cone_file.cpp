@@ -28,17 +28,13 @@ std::vector<int> read_cone_file(const std::string& path, int num_vertices) {
     if (words >> extra) throw InputError(located(path, line, "expected one number (the vertex's total angle), found more"));
     // The whole word is the number (a NUL byte inside it would end strtod's reading early),
     // and it is quoted shortened, its control bytes escaped.
-    double angle = 0;
-    if (!io_detail::parse_double(word, angle))
-      throw InputError(located(path, line, io_detail::quote_token(word) + " is not a number"));
     const std::string shown = io_detail::quote_token(word);
+    double angle = 0;
+    if (!io_detail::parse_double(word, angle)) throw InputError(located(path, line, shown + " is not a number"));
     const double q = (2 * std::numbers::pi - angle) / kQuarter;
-    // Beyond -kMostQuarters a cone is not one a field on any mesh can have (and the index
-    // would not fit an int).
-    constexpr double kMostQuarters = 1e4;
-    if (std::isfinite(q) && q < -kMostQuarters)
+    if (std::isfinite(q) && q < -kMostConeQuarters)  // cone_field.h: no field has such a cone
       throw InputError(located(path, line, "the angle " + shown + " is too large for a cone (at most 2 pi + " +
-                                               std::to_string(static_cast<int>(kMostQuarters)) + " quarter turns)"));
+                                               std::to_string(kMostConeQuarters) + " quarter turns)"));
     if (!std::isfinite(q) || std::abs(q - std::round(q)) > 1e-6 || angle <= 0)
       throw InputError(located(path, line, "the angle " + shown +
                                                " is not 2 pi minus a whole number of quarter turns (a positive angle k pi/2)"));

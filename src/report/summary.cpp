@@ -184,7 +184,7 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["seam_error"] = g.seam_error;
   s["integer_grid"] = o.integer_grid;
   if (o.integer_grid) {
-    s["grid_guide"] = o.grid_guide == GParamOptions::GridGuide::Linf ? "linf" : "l2";
+    s["grid_guide"] = g.grid_guide == GParamOptions::GridGuide::Linf ? "linf" : "l2";  // the one followed
     s["integer_error"] = g.integer_error;
     s["rounded_singularities"] = g.rounding.singularities;
     s["rounded_translations"] = g.rounding.translations;

@@ -157,9 +157,6 @@ Result solve_unit_size(const GParamOptions& o, const UnitSize& unit) {
   return start.ok() ? local_global(problem, start.positions, solver, lg) : start;
 }
 
-// --integer-grid: the problem that is solved (the surface at unit size) is rounded to the grid
-// of the edge length at that size; out.problem, in surface units, takes the same constraints
-// scaled back when the two differ.
 // The problem the rounding's L2 solves are made on: the seamless problem itself (the L2
 // guide), or the same with each element's target replaced by the free L-infinity map's
 // Jacobian (the Linf guide), whose L2 map is that map: the steps then move the guide's
@@ -181,8 +178,12 @@ std::optional<Problem> guided_rounding_problem(const GParamOptions& o, const Pro
   return guided;
 }
 
+// --integer-grid: the problem that is solved (the surface at unit size) is rounded to the grid
+// of the edge length at that size; out.problem, in surface units, takes the same constraints
+// scaled back when the two differ.
 void round_unit_problem(const GParamOptions& o, const UnitSize& unit, Problem& solved, GParamOutcome& out) {
   std::optional<Problem> guided = guided_rounding_problem(o, solved);
+  out.grid_guide = guided ? GParamOptions::GridGuide::Linf : GParamOptions::GridGuide::L2;
   Problem& rounded = guided ? *guided : solved;
   out.rounding = round_to_integer_grid(*unit.mesh, out.graph, out.cut, out.singular, out.edge_length / unit.scale,
                                        rounded, o.progress, o.integer_grid_options);

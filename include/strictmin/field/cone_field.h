@@ -43,7 +43,10 @@ void write_cone_file(const std::string& path, const std::vector<int>& quarters);
 
 // Cones asked for (a cone file's, GParamOptions::cones) must be ones a surface can have: a
 // total angle 2 pi - q pi/2 that is positive and at most 2 pi + 10,000 quarter turns, i.e.
-// -10000 <= q <= 3, as the cone file's angles. Throws InputError naming `where` and the vertex.
+// -kMostConeQuarters <= q <= 3, as the cone file's angles (beyond, no field on any mesh has
+// such a cone, and the index would not fit an int). Throws InputError naming `where` and the
+// vertex.
+constexpr int kMostConeQuarters = 10000;
 void check_cone_indices(const std::vector<int>& quarters, const std::string& where);
 
 }  // namespace strictmin

@@ -88,6 +88,9 @@ struct GParamOutcome {
   MapDistortion measured;     // fd against the field's frames, or arap (dimensionless)
   double seam_error = 0;      // largest transition violation, in UV units
   IntegerGridRounding rounding;  // integer_grid: what was rounded
+  // integer_grid: the guide the rounding followed (L2 when the L-infinity guide's solve was
+  // not usable, whatever grid_guide asked for).
+  GParamOptions::GridGuide grid_guide = GParamOptions::GridGuide::L2;
   double integer_error = 0;      // integer_grid: the map's distance to the grid (integer_grid_error)
   double graph_time_s = 0;  // the surface graph (edges, fans) and the manifold checks
   double field_time_s = 0, cut_time_s = 0, solve_time_s = 0;
