@@ -28,6 +28,7 @@
 #include "strictmin/report/html_report.h"
 #include "strictmin/tasks/examples.h"
 #include "strictmin/tasks/map_distortion.h"
+#include "io/text_parse.h"
 
 namespace strictmin::cli {
 namespace {
@@ -76,17 +77,17 @@ Eigen::VectorXd read_distortion_file(const std::string& path, int expected) {
 // Vertex positions of a result whose elements may be flipped (an L2 map can fold over, and
 // read_mesh rejects inconsistent orientation): OBJ `v` lines, MEDIT `Vertices`, OFF vertices.
 Eigen::MatrixXd read_positions(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
+  const std::string text = io_detail::read_text_file(path);  // "cannot read PATH: the reason"
+  io_detail::LineReader lines(text);  // '\n', "\r\n" or '\r' line ends
+  std::string_view view;
   const std::string ext = lowercase_extension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".mesh")
     throw InputError(path + ": the report reads results written as .obj, .off or .mesh ('" + ext +
                      "' is written by the tasks but not read back; run the task with -o OUT.obj)");
   std::vector<Eigen::Vector3d> points;
-  std::string line;
   if (ext == ".obj") {
-    while (std::getline(in, line)) {
-      std::istringstream ls(line);
+    while (lines.next(view)) {
+      std::istringstream ls{std::string(view)};
       std::string key;
       Eigen::Vector3d p = Eigen::Vector3d::Zero();
       if (ls >> key && key == "v" && ls >> p.x() >> p.y()) {
@@ -96,8 +97,8 @@ Eigen::MatrixXd read_positions(const std::string& path) {
     }
   } else {
     std::vector<std::string> tokens;  // whitespace-separated, comments dropped
-    while (std::getline(in, line)) {
-      std::istringstream ls(line.substr(0, line.find('#')));
+    while (lines.next(view)) {
+      std::istringstream ls{std::string(view.substr(0, view.find('#')))};
       for (std::string t; ls >> t;) tokens.push_back(t);
     }
     std::size_t i = 0, n = 0, per = 3;

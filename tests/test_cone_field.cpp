@@ -202,6 +202,9 @@ TEST(ConeFile, RoundTripAndErrorsNameTheLine) {
   expect_input_error([&] { read_cone_file(write("1e300\n"), 1); }, {"line 1", "too large"});
   expect_input_error([&] { read_cone_file(write("3.14159265358979 1\n"), 1); }, {"line 1", "one number"});
   EXPECT_EQ(read_cone_file(write("# a comment\n4.71238898038469  # index 1/4\n\n"), 1), std::vector<int>{1});
+  // Carriage returns alone end lines (the file read as one line: "found more").
+  EXPECT_EQ(read_cone_file(write("# cones\r6.283185307179586\r4.71238898038469\r"), 2), (std::vector<int>{0, 1}));
+  expect_input_error([&] { read_cone_file(write("6.283185307179586\r\nx\r"), 2); }, {"line 2", "'x' is not a number"});
   // The whole word is the number: a NUL byte ended the reading (the rest was ignored), and a
   // bad word is quoted shortened with its control bytes escaped (it reached the terminal whole).
   constexpr char kNul[] = "6.283185307179586\0junk\n";
@@ -227,6 +230,11 @@ TEST(FieldFile, TheWholeWordIsTheNumber) {
   constexpr char kNul[] = "1 0 0\n1\0zz 0 0\n";
   std::ofstream(path) << std::string(kNul, sizeof kNul - 1);
   expect_input_error([&] { read_field_file(path, 2); }, {"line 2", "face 1", "'1\\x00zz' is not a number"});
+  std::ofstream(path) << "# field\r1 0 0\r0 1 0\r";  // carriage returns alone end lines
+  const Eigen::MatrixXd d = read_field_file(path, 2);
+  EXPECT_EQ(d(1, 1), 1.0);
+  std::ofstream(path) << "1 0 0\r0 1\r";
+  expect_input_error([&] { read_field_file(path, 2); }, {"line 2", "face 1", "expected 3 numbers"});
   std::filesystem::remove_all(dir);
 }
 

@@ -35,6 +35,13 @@ TEST(Handles, TextWithCommentsAndBlankLines) {
   EXPECT_EQ(h[1].position, Eigen::Vector2d(1e-3, 2));
 }
 
+TEST(Handles, CarriageReturnsAloneEndLines) {
+  const std::vector<Handle> h = parse_handles("# vertex x y\r3 0.5 -1\r7 1 2\r", "h.txt", 10, 2);
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[1].vertex, 7);
+  expect_bad("3 0.5 -1\r\r7 x 2\r", "h.txt", 2, {"h.txt", "line 3"});
+}
+
 // A byte-order mark is skipped in text from memory as by read_handles (the first line was
 // "expected a vertex index").
 TEST(Handles, ByteOrderMarkInAString) {

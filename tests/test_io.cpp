@@ -174,6 +174,28 @@ TEST(ReadObj, CornerFormsNegativeIndicesAndIgnoredStatements) {
   EXPECT_EQ(m.UV(2, 1), 1.0);
 }
 
+// Lines that end with a carriage return alone (the classic Mac convention) are lines: the
+// whole file was one line before, read as the first statement only or refused.
+TEST(LineEnds, CarriageReturnsAloneEndLinesInEveryReader) {
+  const Mesh obj = read_mesh_from_string("# square\rv 0 0 0\rv 1 0 0\rv 1 1 0\rv 0 1 0\rf 1 2 3\rf 1 3 4\r", "cr.obj");
+  EXPECT_EQ(obj.num_vertices(), 4);
+  EXPECT_EQ(obj.num_elements(), 2);
+  const Mesh mixed = read_mesh_from_string("v 0 0 0\r\nv 1 0 0\rv 1 1 0\nv 0 1 0\r\rf 1 2 3\r\nf 1 3 4", "mixed.obj");
+  EXPECT_EQ(mixed.num_elements(), 2);
+  // Line numbers count each convention's line end once ("\r\n" is one end, "\r\r" two).
+  expect_input_error([] { read_mesh_from_string("v 0 0 0\r\nv 1 0 0\r\rv 1 x 0\r", "n.obj"); },
+                     {"n.obj: line 4"});
+  const Mesh off = read_mesh_from_string("OFF\r# comment\r4 2 0\r0 0 0\r1 0 0\r1 1 0\r0 1 0\r3 0 1 2\r3 0 2 3\r", "cr.off");
+  EXPECT_EQ(off.num_elements(), 2);
+  // MEDIT: a '#' comment ends at the '\r' (it ran to the end of the file), and lines count.
+  const Mesh medit = read_mesh_from_string(
+      "MeshVersionFormatted 1\r# comment\rDimension 3\rVertices 3\r0 0 0 0\r1 0 0 0\r0 1 0 0\rTriangles 1\r1 2 3 0\rEnd\r",
+      "cr.mesh");
+  EXPECT_EQ(medit.num_elements(), 1);
+  expect_input_error([] { read_mesh_from_string("Dimension 3\rVertices\r1\r0 x 0 0\r", "n.mesh"); },
+                     {"n.mesh", "line 4", "'x'"});
+}
+
 TEST(ReadObj, NormalOnlyCorners) {
   const Mesh m = read_mesh_from_string("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n", "n.obj");
   EXPECT_EQ(m.F.row(0), Eigen::RowVector3i(0, 1, 2));

@@ -14,12 +14,13 @@ namespace strictmin {
 
 std::vector<int> read_cone_file(const std::string& path, int num_vertices) {
   constexpr double kQuarter = std::numbers::pi / 2;
-  std::istringstream in(io_detail::read_text_file(path));  // "cannot read PATH: the reason"
+  const std::string file = io_detail::read_text_file(path);  // "cannot read PATH: the reason"
+  io_detail::LineReader lines(file);  // '\n', "\r\n" or '\r' line ends
   std::vector<int> quarters;
-  std::string text;
-  long line = 0;
-  while (std::getline(in, text)) {
-    ++line;
+  std::string_view view;
+  while (lines.next(view)) {
+    const long line = lines.line_number();
+    std::string text(view);
     const size_t hash = text.find('#');
     if (hash != std::string::npos) text.resize(hash);
     std::istringstream words(text);

@@ -13,13 +13,15 @@
 namespace strictmin {
 
 Eigen::MatrixXd read_field_file(const std::string& path, int num_faces, std::vector<long>* lines) {
-  std::istringstream in(io_detail::read_text_file(path));  // "cannot read PATH: the reason"
+  const std::string file = io_detail::read_text_file(path);  // "cannot read PATH: the reason"
+  io_detail::LineReader reader(file);  // '\n', "\r\n" or '\r' line ends
   std::vector<double> values;
-  std::string text;
-  long line = 0, rows = 0;
+  std::string_view view;
+  long rows = 0;
   if (lines) lines->clear();
-  while (std::getline(in, text)) {
-    ++line;
+  while (reader.next(view)) {
+    const long line = reader.line_number();
+    std::string text(view);
     const size_t hash = text.find('#');
     if (hash != std::string::npos) text.resize(hash);
     std::istringstream words(text);

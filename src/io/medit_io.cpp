@@ -15,19 +15,20 @@ namespace strictmin::io_detail {
 namespace {
 
 // Whitespace-separated tokens over the whole text, '#' comments to the end of the line,
-// with the line number of the last token.
+// with the line number of the last token. A line ends at '\n', "\r\n" or a '\r' alone
+// (LineReader's rule, text_parse.h).
 class TokenStream {
  public:
   explicit TokenStream(std::string_view text) : text_(text) {}
   bool next(std::string_view& token) {
     for (;;) {
       while (pos_ < text_.size() && (is_space(text_[pos_]) || text_[pos_] == '\n')) {
-        if (text_[pos_] == '\n') ++line_;
+        if (ends_line(pos_)) ++line_;
         ++pos_;
       }
       if (pos_ >= text_.size()) return false;
       if (text_[pos_] == '#') {
-        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+        while (pos_ < text_.size() && text_[pos_] != '\n' && text_[pos_] != '\r') ++pos_;
         continue;
       }
       const size_t start = pos_;
@@ -39,6 +40,11 @@ class TokenStream {
   long line() const { return line_; }
 
  private:
+  // The character at i ends a line: '\n', or a '\r' not followed by '\n'.
+  bool ends_line(size_t i) const {
+    return text_[i] == '\n' || (text_[i] == '\r' && (i + 1 == text_.size() || text_[i + 1] != '\n'));
+  }
+
   std::string_view text_;
   size_t pos_ = 0;
   long line_ = 1;

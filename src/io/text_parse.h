@@ -45,16 +45,22 @@ inline std::string read_text_file(const std::string& path) {
   return text;
 }
 
-// Iterates over the lines of a buffer ('\n' separated; a trailing '\r' is whitespace).
+// Iterates over the lines of a buffer. A line ends at '\n', at "\r\n" or at a '\r' alone (the
+// three conventions in use); a '\r' before '\n' stays in the line, where it is whitespace.
 class LineReader {
  public:
   explicit LineReader(std::string_view text) : text_(text) {}
-  // Next line without its '\n'; false at the end of the text.
+  // Next line without its end; false at the end of the text.
   bool next(std::string_view& line) {
     if (pos_ >= text_.size()) return false;
     const char* begin = text_.data() + pos_;
     const void* nl = std::memchr(begin, '\n', text_.size() - pos_);
-    const size_t len = nl ? static_cast<size_t>(static_cast<const char*>(nl) - begin) : text_.size() - pos_;
+    size_t len = nl ? static_cast<size_t>(static_cast<const char*>(nl) - begin) : text_.size() - pos_;
+    // A '\r' inside the line, not the one of a "\r\n", ends it (CR-only line ends).
+    if (const void* cr = std::memchr(begin, '\r', len)) {
+      const size_t at = static_cast<size_t>(static_cast<const char*>(cr) - begin);
+      if (at + 1 < len || !nl) len = at;
+    }
     line = std::string_view(begin, len);
     pos_ += len + 1;
     ++line_number_;

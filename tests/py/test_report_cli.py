@@ -74,6 +74,23 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_report_reads_results_with_carriage_returns_alone(self):
+        """A result rewritten with CR-only line ends (the classic Mac convention) gives the
+        same picture: its OBJ was read as one line ("no vertices found")."""
+        for method in ("l2", "linf"):
+            run("deform", "--example", "square", "--method", method, "-o", f"{method}.obj", "--distortion",
+                f"{method}.txt", "--summary", f"{method}.json", "--quiet", cwd=self.dir)
+        run("report", "lf", "--run", "l2.json", "--run", "linf.json", cwd=self.dir)
+        for method in ("l2", "linf"):
+            path = os.path.join(self.dir, f"{method}.obj")
+            text = read(path, "rb").replace(b"\n", b"\r")
+            with open(path, "wb") as f:
+                f.write(text)
+        run("report", "cr", "--run", "l2.json", "--run", "linf.json", cwd=self.dir)
+        for name in ("l2.svg", "linf.svg"):
+            self.assertEqual(read(os.path.join(self.dir, "cr", "square", name)),
+                             read(os.path.join(self.dir, "lf", "square", name)), name)
+
     def test_report_of_the_demos_results(self):
         """docs/report.md: the demo writes each result's summary, map and distortion for
         `strictmin report`; its param and gparam summaries (inputs example:spherical-cap and
