@@ -30,6 +30,10 @@ class GlobalStep {
   // the start's maximum a warm-started linf step begins.
   Result run(Problem& problem, const Eigen::MatrixXd& X, double gap, double expected_change) const;
   bool is_sweep() const { return static_cast<bool>(sweeper_); }
+  // The next linf step starts cold (a centred point) instead of from the last dual.
+  void forget_warm_start() const {
+    if (warm_) *warm_ = LinfWarmStart();
+  }
 
  private:
   SolverOptions solver_;
