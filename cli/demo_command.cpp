@@ -101,9 +101,8 @@ nlohmann::json run_summary(const std::string& example, const SolverOptions& opti
 int run_demo(const DemoArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto threads = limit_threads(a.output.threads);
+  open_report_folder(a.out);
   std::error_code ec;
-  fs::create_directories(a.out, ec);
-  if (ec) throw InputError("cannot create " + a.out + ": " + ec.message());
 
   HtmlReport report;
   report.title = "strictmin demo: L2 concentrates distortion, L\u221e caps it, the strict minimizer spreads it";

@@ -50,9 +50,7 @@ std::vector<std::string> write_gparam_pictures(const std::string& dir, const std
 
 std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input,
                                 const Mesh& mesh, const GParamOutcome& g) {
-  std::error_code ec;
-  std::filesystem::create_directories(a.dir, ec);
-  if (ec) throw InputError("--report " + a.dir + ": cannot create the folder: " + ec.message());
+  open_report_folder(a.dir);
   const std::string method = summary.value("method", std::string("l2"));
   MethodRun run = method_run(method, g);
   const auto pictures = write_gparam_pictures(a.dir, method, mesh, g, section_colour_scale({run}, a.scale));

@@ -366,9 +366,8 @@ int run_report(ReportCommandArgs a) {
   std::vector<std::string> problems;
   for (const auto& r : loaded)
     if (std::find(problems.begin(), problems.end(), r.problem) == problems.end()) problems.push_back(r.problem);
+  open_report_folder(a.dir);
   std::error_code ec;
-  fs::create_directories(a.dir, ec);
-  if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
 
   HtmlReport report;
   report.title = a.title;

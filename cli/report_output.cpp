@@ -81,9 +81,7 @@ MethodRun method_run(const std::string& method, const InterpFrame& f) {
 std::string write_report_folder(const ReportArgs& a, const nlohmann::json& summary, const std::string& title,
                                 const std::vector<SectionInput>& sections) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(a.dir, ec);
-  if (ec) throw InputError("cannot create " + a.dir + ": " + ec.message());
+  open_report_folder(a.dir);
   nlohmann::json with_provenance = summary;
   add_provenance_summary(with_provenance);  // as --summary writes it (the same file when both name it)
   write_file_atomically((fs::path(a.dir) / "summary.json").string(),

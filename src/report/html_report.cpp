@@ -8,6 +8,7 @@
 
 #include "markup.h"
 #include "strictmin/io/atomic_file.h"
+#include "strictmin/io/input_error.h"
 #include "strictmin/report/histogram.h"
 #include "strictmin/report/report_manifest.h"
 #include "strictmin/report/strict_order.h"
@@ -334,6 +335,15 @@ std::string index_html(const HtmlReport& r) {
   if (!r.footer.empty()) h << "<footer>" << escape(r.footer) << "</footer>\n";
   h << "</main>\n</body>\n</html>\n";
   return h.str();
+}
+
+void open_report_folder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError("cannot create the report folder " + dir + ": " + ec.message());
+  const std::filesystem::path index = std::filesystem::path(dir) / "index.html";
+  if (std::filesystem::is_regular_file(index, ec) && !std::filesystem::remove(index, ec))
+    throw InputError("cannot replace " + index.string() + ": " + ec.message());
 }
 
 void write_index_html(const std::string& path, const HtmlReport& report) {

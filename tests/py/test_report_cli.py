@@ -74,6 +74,19 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_a_report_cut_short_leaves_no_index(self):
+        """The index is written last and the previous one is removed first, so a report whose
+        writing stopped (here an error; a second Ctrl-C alike) has no index.html: the older
+        run's index stayed and pointed at a mix of both runs' files."""
+        out = os.path.join(self.dir, "R")
+        run("deform", "--example", "square", "--method", "l2", "--report", out, "--quiet")
+        self.assertTrue(os.path.exists(os.path.join(out, "index.html")))
+        os.remove(os.path.join(out, "histogram.svg"))
+        os.mkdir(os.path.join(out, "histogram.svg"))  # the next report cannot write it
+        p = run("deform", "--example", "square", "--method", "linf", "--report", out, "--quiet", check_code=1)
+        self.assertIn("histogram.svg", p.stderr)
+        self.assertFalse(os.path.exists(os.path.join(out, "index.html")))
+
     def test_report_reads_results_with_carriage_returns_alone(self):
         """A result rewritten with CR-only line ends (the classic Mac convention) gives the
         same picture: its OBJ was read as one line ("no vertices found")."""

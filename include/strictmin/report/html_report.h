@@ -67,6 +67,12 @@ std::string verdict_text(const StrictComparison& c, const std::string& name_a, c
                          double total_area);
 
 std::string index_html(const HtmlReport& report);
+// Creates the report folder dir (and its parents) for a new report and removes the previous
+// report's index.html there. The index is written last (write_index_html), so a folder whose
+// writing was cut short (a second Ctrl-C) has none, where an older run's index would point at
+// a mix of both runs' files. Throws InputError naming the folder when it cannot be created.
+void open_report_folder(const std::string& dir);
+
 // Writes index_html(report) to path atomically, then the folder's manifest of the files the
 // report refers to, removing the previous report's files it no longer refers to
 // (report/report_manifest.h).
