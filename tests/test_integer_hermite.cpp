@@ -61,6 +61,36 @@ bool any_in_box(int n, int box, const std::function<bool(const IntegerVector&)>&
   }
 }
 
+// Whether some integer x with the given coordinates fixed (-1: free) and the free ones in
+// [-box, box] solves A x = 0 (machine integers: the entries are small).
+bool any_small_completion(const IntegerMatrix& A, const std::vector<long>& fixed, const std::vector<char>& is_fixed,
+                          int box) {
+  const int n = A.cols();
+  std::vector<long> x(static_cast<std::size_t>(n));
+  std::vector<int> free;
+  for (int c = 0; c < n; ++c) {
+    if (is_fixed[static_cast<std::size_t>(c)]) {
+      x[static_cast<std::size_t>(c)] = fixed[static_cast<std::size_t>(c)];
+    } else {
+      free.push_back(c);
+      x[static_cast<std::size_t>(c)] = -box;
+    }
+  }
+  while (true) {
+    bool solves = true;
+    for (int r = 0; r < A.rows && solves; ++r) {
+      long sum = 0;
+      for (int c = 0; c < n; ++c) sum += A(r, c).get_si() * x[static_cast<std::size_t>(c)];
+      solves = sum == 0;
+    }
+    if (solves) return true;
+    std::size_t k = 0;
+    while (k < free.size() && x[static_cast<std::size_t>(free[k])] == box) x[static_cast<std::size_t>(free[k++])] = -box;
+    if (k == free.size()) return false;
+    ++x[static_cast<std::size_t>(free[k])];
+  }
+}
+
 // The normal form's properties: A U = H, U unimodular, H in column echelon form with
 // positive pivots and reduced entries left of them, zero after the rank.
 void expect_hermite_form(const IntegerMatrix& A) {
@@ -74,12 +104,18 @@ void expect_hermite_form(const IntegerMatrix& A) {
         continue;
       }
       const int pr = f.pivot_rows[static_cast<std::size_t>(k)];
-      if (r < pr) EXPECT_EQ(f.H(r, k), 0);
-      if (r == pr) EXPECT_GT(f.H(r, k), 0);
+      if (r < pr) {
+        EXPECT_EQ(f.H(r, k), 0);
+      }
+      if (r == pr) {
+        EXPECT_GT(f.H(r, k), 0);
+      }
     }
   for (int k = 0; k < f.rank(); ++k) {
     const int pr = f.pivot_rows[static_cast<std::size_t>(k)];
-    if (k > 0) EXPECT_GT(pr, f.pivot_rows[static_cast<std::size_t>(k - 1)]);
+    if (k > 0) {
+      EXPECT_GT(pr, f.pivot_rows[static_cast<std::size_t>(k - 1)]);
+    }
     for (int j = 0; j < k; ++j) {
       EXPECT_GE(f.H(pr, j), 0);
       EXPECT_LT(f.H(pr, j), f.H(pr, k));
@@ -113,9 +149,11 @@ TEST(IntegerHermite, ClosedCases) {
   IntegerMatrix big(1, 2);
   big(0, 0) = mpz_class("123456789012345678901234567890");
   big(0, 1) = mpz_class("987654321098765432109876543210");
-  const auto x = integer_solution(big, IntegerVector{mpz_class("9000000000000000000000000000090")});
-  ASSERT_TRUE(x);  // gcd = 9000000000000000000000000000090
-  EXPECT_EQ(times(big, *x)[0], mpz_class("9000000000000000000000000000090"));
+  // gcd = 9000000000900000000090: 7 gcd is reached, gcd + 1 is not.
+  const auto x = integer_solution(big, IntegerVector{mpz_class("63000000006300000000630")});
+  ASSERT_TRUE(x);
+  EXPECT_EQ(times(big, *x)[0], mpz_class("63000000006300000000630"));
+  EXPECT_FALSE(integer_solution(big, IntegerVector{mpz_class("9000000000900000000091")}));
   expect_hermite_form(big);
 }
 
@@ -141,15 +179,21 @@ TEST(IntegerHermite, RandomSystemsAgainstBruteForce) {
     }
     expect_hermite_form(A);
     const auto x = integer_solution(A, b);
-    if (x) EXPECT_EQ(times(A, *x), b) << "trial " << trial;
-    const bool found = any_in_box(n, 8, [&](const IntegerVector& y) { return times(A, y) == b; });
-    if (found) EXPECT_TRUE(x) << "trial " << trial << ": the box has a solution";
+    if (x) {
+      EXPECT_EQ(times(A, *x), b) << "trial " << trial;
+    }
+    bool found = false;
+    any_in_box(n, 8, [&](const IntegerVector& y) { return found = times(A, y) == b; });
+    if (found) {
+      EXPECT_TRUE(x) << "trial " << trial << ": the box has a solution";
+    }
     (x ? solvable : unsolvable) += 1;
     const IntegerMatrix K = integer_kernel(A);
     for (const IntegerVector& k : K.columns) EXPECT_EQ(times(A, k), IntegerVector(static_cast<std::size_t>(m))) << trial;
     any_in_box(n, 3, [&](const IntegerVector& y) {
-      if (times(A, y) == IntegerVector(static_cast<std::size_t>(m)) && K.cols() > 0)
+      if (times(A, y) == IntegerVector(static_cast<std::size_t>(m)) && K.cols() > 0) {
         EXPECT_TRUE(integer_solution(K, y)) << "trial " << trial << ": a kernel vector outside the basis' span";
+      }
       return false;
     });
   }
@@ -169,7 +213,7 @@ TEST(GridCompletion, QuarterTurnRelation) {
   EXPECT_EQ(t.nearest({0.6, 0.3}), Eigen::Vector2d(0, 0));
   EXPECT_EQ(t.nearest({0.9, 0.2}), Eigen::Vector2d(1, 1));  // not the nearest grid point (1, 0)
   EXPECT_EQ(t.nearest({10.4, 0.45}), Eigen::Vector2d(10, 0));
-  EXPECT_EQ(t.nearest({10.4, 0.55}), Eigen::Vector2d(11, 1));
+  EXPECT_EQ(t.nearest({10.6, 0.55}), Eigen::Vector2d(11, 1));
   EXPECT_FALSE(c.fix(1, {1, 0}));
   ASSERT_TRUE(c.fix(0, {1, 0}));
   const GridCoset fixed = c.coset(1);
@@ -209,29 +253,31 @@ TEST(GridCompletion, RandomRelationsAgainstIntegerSolutionsAndBruteForce) {
       EXPECT_TRUE(coset.contains(nearest));
       for (int i = -12; i <= 12; ++i)
         for (int j = -12; j <= 12; ++j)
-          if (coset.contains({i, j})) EXPECT_LE((nearest - y).norm(), (Eigen::Vector2d(i, j) - y).norm() + 1e-12) << trial;
+          if (coset.contains({i, j})) {
+            EXPECT_LE((nearest - y).norm(), (Eigen::Vector2d(i, j) - y).norm() + 1e-12) << trial;
+          }
       const Eigen::Vector2d v(point(rng), point(rng));
       // The stacked system: A x = 0 and the held coordinates.
-      auto stacked = [&](const std::vector<std::pair<int, Eigen::Vector2d>>& fixed, IntegerVector& rhs) {
-        IntegerMatrix S(m + 2 * static_cast<int>(fixed.size()), 6);
-        rhs.assign(static_cast<std::size_t>(S.rows), 0);
-        for (int r = 0; r < m; ++r)
-          for (int c = 0; c < 6; ++c) S(r, c) = A(r, c);
-        for (std::size_t k = 0; k < fixed.size(); ++k)
-          for (int d = 0; d < 2; ++d) {
-            const int r = m + 2 * static_cast<int>(k) + d;
-            S(r, 2 * fixed[k].first + d) = 1;
-            rhs[static_cast<std::size_t>(r)] = static_cast<long>(fixed[k].second(d));
-          }
-        return S;
-      };
       auto with = held;
       with.emplace_back(value, v);
-      IntegerVector rhs;
-      const IntegerMatrix S = stacked(with, rhs);
+      IntegerMatrix S(m + 2 * static_cast<int>(with.size()), 6);
+      IntegerVector rhs(static_cast<std::size_t>(S.rows));
+      std::vector<long> coordinates(6, 0);
+      std::vector<char> is_fixed(6, 0);
+      for (int r = 0; r < m; ++r)
+        for (int c = 0; c < 6; ++c) S(r, c) = A(r, c);
+      for (std::size_t k = 0; k < with.size(); ++k)
+        for (int d = 0; d < 2; ++d) {
+          const int r = m + 2 * static_cast<int>(k) + d, c = 2 * with[k].first + d;
+          S(r, c) = 1;
+          rhs[static_cast<std::size_t>(r)] = static_cast<long>(with[k].second(d));
+          coordinates[static_cast<std::size_t>(c)] = static_cast<long>(with[k].second(d));
+          is_fixed[static_cast<std::size_t>(c)] = 1;
+        }
       const bool solvable = integer_solution(S, rhs).has_value();
-      const bool boxed = any_in_box(6, 4, [&](const IntegerVector& x) { return times(S, x) == rhs; });
-      if (boxed) EXPECT_TRUE(solvable) << trial;
+      if (any_small_completion(A, coordinates, is_fixed, 6)) {
+        EXPECT_TRUE(solvable) << trial;
+      }
       EXPECT_EQ(coset.contains(v), solvable) << trial;
       const bool fixed = completion.fix(value, v);
       EXPECT_EQ(fixed, solvable) << trial;

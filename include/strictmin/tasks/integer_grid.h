@@ -51,6 +51,7 @@ struct IntegerGridRounding {
   int moved_past_nearest = 0;
   double largest_rounding = 0; // the largest move to the grid of a rounded value, in UV units
   double time_s = 0;
+  double check_time_s = 0;     // of which the exact check (the relations' Hermite form and the fixes)
 };
 
 struct IntegerGridOptions {
