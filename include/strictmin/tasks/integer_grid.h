@@ -10,8 +10,8 @@
 // (R is a quarter turn, so the grid maps to itself across the seam). Greedy rounding, with
 // L2 solves in between:
 //   1. the singular vertices, nearest to an integer point first, a quarter of those left at a
-//      time (halved while the values of one step contradict each other), each held at its
-//      point (a fixed vertex);
+//      time, each held at its point (a fixed vertex); a step whose values contradict each
+//      other is tried again with half as many;
 //   2. then the branch translations the same way, each as two equality rows
 //      f_left(v) - R f_right(v) = h n on one vertex of the branch (the seam rows carry it along
 //      the branch).
