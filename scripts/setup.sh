@@ -8,6 +8,7 @@ PACKAGES=(
   build-essential cmake pkgconf
   libeigen3-dev libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
+  libgmp-dev  # GMP's C++ integers (gmpxx.pc): the integer-grid rounding's Hermite normal form
   python3 python3-numpy python3-cvxopt
   python3-dev pybind11-dev python3-pybind11 python3-pytest python3-meshio python3-matplotlib
   python3-setuptools python3-wheel python3-pip python3-venv

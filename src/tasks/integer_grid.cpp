@@ -7,12 +7,15 @@
 #include <cstdio>
 #include <complex>
 #include <optional>
+#include <stdexcept>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/interrupt.h"
 #include "strictmin/solvers/timing.h"
 #include "strictmin/tasks/seamless_problem.h"
 #include "tasks/bordered_l2.h"
+#include "tasks/grid_completion.h"
+#include "tasks/node_relations.h"
 
 namespace strictmin {
 namespace {
@@ -20,24 +23,9 @@ namespace {
 // Each rounding step takes this share of the values left (at least one), nearest first.
 constexpr double kStepShare = 0.25;
 
-// A value is fixed by the equalities when perturbed targets move it by at most kDetermined
-// (relative), and on the grid within kOnTheGrid grid units.
-constexpr double kDetermined = 1e-9;
-constexpr double kOnTheGrid = 1e-6;
-
 // The bordered L2 solver's rows contradict each other when they miss by more than this,
 // relative to the map's extent (RoundingState::tolerance).
 constexpr double kRowTolerance = 1e-8;
-
-// The problem with every target moved by a fixed pseudo-random amount (0.3 at most): the
-// values its L2 map shares with the problem's are those its equalities fix.
-Problem with_perturbed_targets(const Problem& p) {
-  Problem q = p;
-  for (Eigen::Index r = 0; r < q.targets.rows(); ++r)
-    for (Eigen::Index c = 0; c < q.targets.cols(); ++c)
-      q.targets(r, c) += 0.3 * std::sin(12.9898 * static_cast<double>(r * q.targets.cols() + c) + 1.0);
-  return q;
-}
 
 // The distance of v (UV units) to the nearest integer point, per coordinate.
 double grid_distance(const Eigen::Vector2d& v) {
@@ -75,11 +63,10 @@ void add_translation_rows(Problem& p, const BranchEnds& ends, const Eigen::Vecto
 }
 
 // The values being rounded: the singular vertices' held wedges, then the branch translations
-// (UV units), and which are on the grid already.
+// (UV units).
 struct GridValues {
   std::vector<int> wedges;       // per singular vertex: its held wedge
   std::vector<BranchEnds> ends;  // per branch
-  std::vector<char> held, rounded;
   double h = 1;
 
   Eigen::Vector2d singular(int i, const Eigen::MatrixXd& X) const { return X.row(wedges[i]).transpose() / h; }
@@ -101,19 +88,6 @@ struct GridValues {
   Eigen::Vector2d translation(int i, const Eigen::MatrixXd& X) const {
     const BranchEnds& e = ends[i];
     return (X.row(e.left).transpose() - e.rotation * X.row(e.right).transpose()) / h;
-  }
-  // Whether some value not rounded yet is fixed by the equalities (the same on the map X and
-  // on the map Y of perturbed targets) off the grid: a rounding that made it so is a dead end.
-  bool fixes_a_value_off_the_grid(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) const {
-    auto off = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
-      return (x - y).cwiseAbs().maxCoeff() <= kDetermined * std::max(1.0, x.cwiseAbs().maxCoeff()) &&
-             grid_distance(x) > kOnTheGrid;
-    };
-    for (size_t i = 0; i < wedges.size(); ++i)
-      if (!held[i] && off(singular(static_cast<int>(i), X), singular(static_cast<int>(i), Y))) return true;
-    for (size_t i = 0; i < ends.size(); ++i)
-      if (!rounded[i] && off(translation(static_cast<int>(i), X), translation(static_cast<int>(i), Y))) return true;
-    return false;
   }
 };
 
@@ -198,7 +172,8 @@ struct RoundingState {
 };
 
 // The grid points around v, nearest first: the nearest, then the other three corners of the
-// unit cell around v (a value rounded alone tries them before it is given up).
+// unit cell around v (without the exact check a value rounded alone tries them before it is
+// given up).
 std::vector<Eigen::Vector2d> grid_points_around(const Eigen::Vector2d& v) {
   const Eigen::Vector2d low(std::floor(v.x()), std::floor(v.y()));
   std::vector<Eigen::Vector2d> points;
@@ -210,58 +185,103 @@ std::vector<Eigen::Vector2d> grid_points_around(const Eigen::Vector2d& v) {
   return points;
 }
 
+// Where a step puts its values. With the exact check (tasks/grid_completion.h) every value is
+// fixed in the integer completion as it is chosen: the step's first value goes to the point
+// of its completable coset nearest the map's value (its nearest grid point when that can be
+// completed, so a dead end cannot arise), each later value to its nearest grid point if that
+// can still be completed with the step's earlier choices, else it waits for the next step
+// (the L2 map then shows what the step's values imply). Without it, the nearest grid point,
+// and a value alone tries the four around it.
+struct Chooser {
+  GridCompletion* exact = nullptr;  // null: no exact check
+  int moved_past_nearest = 0;      // first values held at a coset point other than their nearest grid point
+  double time_s = 0;               // in the exact check
+
+  std::vector<Eigen::Vector2d> first_choices(int value, const Eigen::Vector2d& y, bool alone) {
+    if (exact) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const Eigen::Vector2d nearest = exact->coset(value).nearest(y);
+      time_s += seconds_since(t0);
+      return {nearest};
+    }
+    if (alone) return grid_points_around(y);
+    return {nearest_grid_point(y)};
+  }
+  // Fixes the point in the integer completion; false when it cannot be completed.
+  bool accept(int value, const Eigen::Vector2d& point) {
+    if (!exact) return true;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool fixed = exact->fix(value, point);
+    time_s += seconds_since(t0);
+    return fixed;
+  }
+  std::size_t save() const { return exact ? exact->size() : 0; }
+  void restore(std::size_t count) {
+    if (exact) exact->truncate(count);
+  }
+};
+
 // The greedy loop over one kind of value: `value(i, X)` (UV units) of the pending items,
-// `hold(i, point)` rounds item i to the grid point in `problem`, and `solve` returns the L2
-// map after the step, or nothing when the step is a dead end (its equalities contradict each
-// other, or they fix a value not rounded yet off the grid). A step rounds the nearest
-// kStepShare of the values left; values rounded together
-// can contradict (three free translations around one node, 0.4 + 0.4 - 0.8 = 0, round to
-// 0 + 0 - 1), so a step that fails is undone and tried again with half as many; a value
-// alone tries the four grid points around it. One that still fails is left to the others
-// off the grid, and returned.
-template <class State, class Value, class Hold, class Solve, class Done>
-std::vector<int> round_greedily(std::vector<int> pending, State& state, Eigen::MatrixXd& X, Value value, Hold hold,
-                                Solve solve, Done done, double& largest_rounding) {
+// `lattice(i)` its index among the node relations' values, `hold(i, point)` rounds item i to
+// the grid point, and `solve` returns the L2 map after the step, or nothing when the step's
+// equalities contradict each other. A step rounds the nearest kStepShare of the values left
+// (where the chooser puts them). Values rounded together can contradict (three free
+// translations around one node, 0.4 + 0.4 - 0.8 = 0, round to 0 + 0 - 1): without the exact
+// check the L2 solve finds it, and the step is undone and tried again with half as many (with
+// it, the third waits for the next step, and a contradiction is round-off only). One that
+// fails alone is left to the others off the grid, and returned.
+template <class Value, class Lattice, class Hold, class Solve>
+std::vector<int> round_greedily(std::vector<int> pending, RoundingState& state, Chooser& chooser, Eigen::MatrixXd& X,
+                                Value value, Lattice lattice, Hold hold, Solve solve, double& largest_rounding) {
   std::vector<int> off_grid;
   while (!pending.empty()) {
     std::vector<std::pair<double, int>> order;
     for (int i : pending) order.emplace_back(grid_distance(value(i, X)), i);
     std::sort(order.begin(), order.end());
     size_t take = std::max<size_t>(1, static_cast<size_t>(std::ceil(kStepShare * order.size())));
+    std::vector<char> settled(order.size(), 0);  // rounded in this step, or given up
     bool placed = false;
     while (!placed) {
-      std::vector<std::vector<Eigen::Vector2d>> choices(1);
-      if (take == 1) choices = {grid_points_around(value(order[0].second, X))};
-      const size_t tries = take == 1 ? choices[0].size() : 1;
-      for (size_t t = 0; t < tries && !placed; ++t) {
+      const int first = order[0].second;
+      const Eigen::Vector2d first_nearest = nearest_grid_point(value(first, X));
+      const std::vector<Eigen::Vector2d> choices = chooser.first_choices(lattice(first), value(first, X), take == 1);
+      for (size_t t = 0; t < choices.size() && !placed; ++t) {
         const auto before = state.save();
+        const std::size_t fixed_before = chooser.save();
         double largest_move = 0;  // this try's, per coordinate, in grid units
         for (size_t j = 0; j < take; ++j) {
           const int i = order[j].second;
-          const Eigen::Vector2d point = take == 1 ? choices[0][t] : nearest_grid_point(value(i, X));
+          const Eigen::Vector2d point = j == 0 ? choices[t] : nearest_grid_point(value(i, X));
+          if (!chooser.accept(lattice(i), point)) {
+            if (j == 0) throw std::logic_error("integer-grid rounding: a point of the completable coset was refused");
+            continue;  // waits for the next step
+          }
           largest_move = std::max(largest_move, (point - value(i, X)).cwiseAbs().maxCoeff());
           hold(i, point);
-          done(i, true);
+          settled[j] = 1;
         }
         if (std::optional<Eigen::MatrixXd> next = solve()) {
           X = std::move(*next);
           largest_rounding = std::max(largest_rounding, largest_move);
+          if (chooser.exact && choices[t] != first_nearest) ++chooser.moved_past_nearest;
           placed = true;
           break;
         }
         state.restore(before);
-        for (size_t j = 0; j < take; ++j) done(order[j].second, false);
+        chooser.restore(fixed_before);
+        std::fill(settled.begin(), settled.end(), 0);
       }
       if (placed) break;
       if (take == 1) {
-        off_grid.push_back(order[0].second);
-        done(order[0].second, true);  // left to the others: not rounded again
+        off_grid.push_back(first);  // left to the others: not rounded again
+        settled[0] = 1;
         break;
       }
       take = (take + 1) / 2;
     }
     pending.clear();
-    for (size_t j = take; j < order.size(); ++j) pending.push_back(order[j].second);
+    for (size_t j = 0; j < order.size(); ++j)
+      if (!settled[j]) pending.push_back(order[j].second);
   }
   return off_grid;
 }
@@ -278,26 +298,21 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   values.h = h;
   values.wedges = singular_wedges(graph, cut, singular);
   for (const SeamBranch& b : cut.branches) values.ends.push_back(branch_ends(mesh, graph, cut, b));
-  values.held.assign(values.wedges.size(), 0);
-  values.rounded.assign(values.ends.size(), 0);
-  // With handles (genus >= 1) a rounding can fix a later value off the grid (the header): each
-  // step is then also solved with perturbed targets, and a value not rounded yet that is the
-  // same on both maps is fixed by the equalities, which must be on the grid.
-  const bool look_ahead = options.look_ahead && graph.euler_characteristic() < 2;
   RoundingState state(problem, values.watched());
   if (!state.bordered.ok())
     throw InputError("integer-grid rounding: the seamless problem's L2 matrix is not positive definite");
-  // The targets do not change while rounding: the perturbed ones are made once.
-  const Problem perturbed = look_ahead ? with_perturbed_targets(problem) : Problem();
+  // The exact check: the integer solutions of the node relations (tasks/node_relations.h),
+  // from their Hermite normal form.
+  const NodeRelations relations = node_relations(graph, cut, singular);
+  const auto check_start = std::chrono::steady_clock::now();
+  std::optional<GridCompletion> completion;
+  if (options.look_ahead) completion.emplace(relations.matrix);
+  Chooser chooser{completion ? &*completion : nullptr};
+  chooser.time_s = seconds_since(check_start);
   auto solve = [&]() -> std::optional<Eigen::MatrixXd> {
     check_interrupt();  // solvers/interrupt.h: once per step (horse's 31 solves take 2 s)
     ++out.solves;
     std::optional<Eigen::MatrixXd> X = state.l2(problem);
-    if (X && look_ahead) {
-      ++out.solves;
-      const std::optional<Eigen::MatrixXd> Y = state.l2(perturbed);
-      if (!Y || values.fixes_a_value_off_the_grid(*X, *Y)) X.reset();
-    }
     if (!X) ++out.retried_steps;
     return X;
   };
@@ -314,20 +329,25 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   // first step), so wedge 0 is let go (unless it is a singular vertex's: on the grid already).
   std::vector<int> pending;
   for (size_t i = 0; i < values.wedges.size(); ++i) {
-    values.held[i] = problem.fixed[values.wedges[i]];
-    if (!values.held[i]) pending.push_back(static_cast<int>(i));
-    if (values.held[i] && state.frame_wedge < 0) {  // on the grid already: the bordered rows' frame
+    if (!problem.fixed[values.wedges[i]]) {
+      pending.push_back(static_cast<int>(i));
+      continue;
+    }
+    const Eigen::Vector2d at = problem.positions.row(values.wedges[i]).transpose();
+    if (!chooser.accept(relations.singular_value(static_cast<int>(i)), nearest_grid_point(at / h)))
+      throw std::logic_error("integer-grid rounding: a held singular vertex cannot be completed");
+    if (state.frame_wedge < 0) {  // on the grid already: the bordered rows' frame
       state.frame_wedge = values.wedges[i];
-      const auto at = problem.positions.row(values.wedges[i]);
       state.frame_point = {at(0), at(1)};
     }
   }
   const bool release_anchor = !pending.empty() && pending.size() == values.wedges.size();
   out.singularities = static_cast<int>(pending.size());
   const std::vector<int> off_grid_singular = round_greedily(
-      pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
+      pending, state, chooser, X, [&](int i, const Eigen::MatrixXd& Y) { return values.singular(i, Y); },
+      [&](int i) { return relations.singular_value(i); },
       [&](int i, const Eigen::Vector2d& point) { state.hold_vertex(values.wedges[i], h * point); }, solve,
-      [&](int i, bool held) { values.held[i] = held; }, out.largest_rounding);
+      out.largest_rounding);
   out.singularities_off_grid = static_cast<int>(off_grid_singular.size());
   out.singularities -= out.singularities_off_grid;
 
@@ -336,21 +356,25 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
   for (size_t i = 0; i < values.ends.size(); ++i) pending.push_back(static_cast<int>(i));
   out.translations = static_cast<int>(pending.size());
   const std::vector<int> off_grid_translations = round_greedily(
-      pending, state, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
+      pending, state, chooser, X, [&](int i, const Eigen::MatrixXd& Y) { return values.translation(i, Y); },
+      [&](int i) { return relations.branch_value(i); },
       [&](int i, const Eigen::Vector2d& point) { state.hold_translation(values.ends[i], h * point); }, solve,
-      [&](int i, bool rounded) { values.rounded[i] = rounded; }, out.largest_rounding);
+      out.largest_rounding);
   out.translations_off_grid = static_cast<int>(off_grid_translations.size());
   out.translations -= out.translations_off_grid;
+  out.moved_past_nearest = chooser.moved_past_nearest;
+  out.check_time_s = chooser.time_s;
   state.apply(problem, release_anchor);
   out.time_s = seconds_since(t0);
   if (progress) {
-    char line[260];
+    char line[300];
     std::snprintf(line, sizeof line,
                   "integer grid: %d singular vertices and %d seam translations rounded (largest move %.3g grid "
-                  "units; %d and %d left off the grid), %d L2 solves (%d steps tried again), %.3f s",
-                  out.singularities, out.translations,
-                  out.largest_rounding, out.singularities_off_grid, out.translations_off_grid, out.solves,
-                  out.retried_steps, out.time_s);
+                  "units; %d and %d left off the grid; %d moved past their nearest grid point by the exact "
+                  "check, %.3f s), %d L2 solves (%d steps tried again), %.3f s",
+                  out.singularities, out.translations, out.largest_rounding, out.singularities_off_grid,
+                  out.translations_off_grid, out.moved_past_nearest, out.check_time_s, out.solves, out.retried_steps,
+                  out.time_s);
     progress(line);
   }
   return out;

@@ -43,7 +43,7 @@ struct GParamOptions {
   // --integer-grid: the singular vertices and the seam translations rounded to the grid of
   // the edge length before the method's solve (tasks/integer_grid.h).
   bool integer_grid = false;
-  IntegerGridOptions integer_grid_options;  // the rounding's (its look-ahead)
+  IntegerGridOptions integer_grid_options;  // the rounding's (its exact check)
   // --grid-guide: the map whose values the rounding follows. L2: the seamless L2 map (as
   // MIQ does). Linf: the free L-infinity map (fd), one solve more: the rounding's L2 solves
   // then take its Jacobians as their targets, so that as the grid shrinks the rounded map

@@ -10,23 +10,21 @@
 // (R is a quarter turn, so the grid maps to itself across the seam). Greedy rounding, with
 // L2 solves in between:
 //   1. the singular vertices, nearest to an integer point first, a quarter of those left at a
-//      time (halved while the values of one step contradict each other), each held at its
-//      point (a fixed vertex);
+//      time, each held at its point (a fixed vertex); a step whose values contradict each
+//      other is tried again with half as many;
 //   2. then the branch translations the same way, each as two equality rows
 //      f_left(v) - R f_right(v) = h n on one vertex of the branch (the seam rows carry it along
 //      the branch).
-// The order makes the greedy consistent: every relation among the translations (around a
-// regular vertex where branches meet, sum R_i t_i = 0; around a singular vertex,
-// (I - prod R) f = sum R_i t_i) has integer coefficients, so once the singular vertices are
-// integer, a translation that the others determine is an integer combination of integers,
-// and its rows are redundant, not contradictory. Rounded together they can contradict
-// (0.4 + 0.4 - 0.8 = 0 rounds to 0 + 0 - 1), which the L2 solve finds; the step is then
-// halved. With handles (genus >= 1) the translations around a loop of the cut enter their
-// relations with coefficients such as I - R (determinant 2), and earlier roundings can fix a
-// later translation at a half-integer: there each step also solves with perturbed targets,
-// and a step that fixes a value not rounded yet off the grid is tried again (halved, then a
-// value alone at the four grid points around it). A value every try fails for is left to
-// the others, off the grid (counted below).
+// Every integer value must stay completable: the values satisfy homogeneous integer relations
+// around the cut's nodes ((I - P) f_s = sum_b Q_b t_b at a singular vertex, sum_b Q_b t_b = 0
+// at a regular one; docs/gparam.md, "The node relations"), and with handles (genus >= 1)
+// their coefficients include I - R (determinant 2), so values rounded first can fix a later
+// one at a half-integer. The exact check (IntegerGridOptions::look_ahead) keeps the affine
+// lattice of integer solutions that agree with the values held so far (from the relations'
+// Hermite normal form, GMP integers); each step's first value goes to the point of its
+// completable coset nearest the map's value, the others to their nearest grid point when
+// that can still be completed (else they wait for the next step). No dead end can then
+// arise, and the L2 solves never contradict but by round-off.
 #include <functional>
 #include <string>
 #include <vector>
@@ -45,16 +43,23 @@ struct IntegerGridRounding {
   int solves = 0;              // L2 solves between the rounding steps
   int retried_steps = 0;       // steps whose values contradicted each other, tried again with half
   // Values the others fix off the grid (each alone contradicted them): left unrounded, so
-  // the map is not an integer-grid map there (integer_grid_error shows by how much).
+  // the map is not an integer-grid map there (integer_grid_error shows by how much). None
+  // with the exact check.
   int singularities_off_grid = 0, translations_off_grid = 0;
+  // With the exact check: values held at a completable point other than their nearest grid
+  // point (that one would have been a dead end).
+  int moved_past_nearest = 0;
   double largest_rounding = 0; // the largest move to the grid of a rounded value, in UV units
   double time_s = 0;
+  double check_time_s = 0;     // of which the exact check (the relations' Hermite form and the fixes)
 };
 
 struct IntegerGridOptions {
-  // On surfaces with handles, solve each step a second time with perturbed targets and retry
-  // a step that fixes a value not rounded yet off the grid (above). false: no look-ahead
-  // (half the solves; fertility then leaves 14 translations off the grid), for comparison.
+  // The exact check (above): every value is held where the values held before it can be
+  // completed to an integer solution of the node relations. false: plain greedy rounding
+  // (the L2 solves find contradictions only, so with handles a value can be fixed off the
+  // grid and is left there; fertility at 1000 quads then leaves 14 translations off the
+  // grid), for comparison.
   bool look_ahead = true;
 };
 
