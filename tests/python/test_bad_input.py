@@ -200,6 +200,22 @@ def test_tasks(square):
     assert strictmin.compare(np.array([np.inf, 1.0]), np.array([np.inf, 1.0])).order == 0
 
 
+def test_images_beyond_1e150_are_refused(square):
+    # An image's coordinates overflowed its distortions: an interpolation target of 1e200 gave
+    # frames "solved" with a NaN maximum, distortion() inf (as the CLI's eval and interp).
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="target: vertex 1 \\(0-based\\) has the coordinate .*, beyond 1e150"):
+        strictmin.interp(V, F, V * 1e200, 0.5)
+    with pytest.raises(ValueError, match="U has a coordinate beyond 1e150"):
+        strictmin.distortion(V, F, V * 1e200)
+    with pytest.raises(ValueError, match="U has a coordinate beyond 1e150"):
+        strictmin.distortion(V, F, np.full((F.size, 2), 1e200))  # one image per corner
+    with pytest.raises(ValueError, match="U has a non-finite coordinate"):
+        strictmin.distortion(V, F, V + np.inf)
+    # 1e140 is within the limit: the closed form (fd of x -> s x is |s - 1| sqrt(2)).
+    assert strictmin.distortion(V, F, V * 1e140, "fd").max() == pytest.approx(np.sqrt(2) * 1e140)
+
+
 def test_surface_deforms_in_3d(square):
     # A 3D triangle surface takes 3D handles (as the CLI): handles at their rest positions
     # give the identity map, distortion 0.
