@@ -216,6 +216,19 @@ def test_images_beyond_1e150_are_refused(square):
     assert strictmin.distortion(V, F, V * 1e140, "fd").max() == pytest.approx(np.sqrt(2) * 1e140)
 
 
+def test_every_vertex_a_handle_is_solved_under_qc_and_iso(square):
+    # Nothing to optimise: the frame loop ran to its cap and said max-iterations.
+    V, F, _, _ = square
+    idx = np.arange(len(V))
+    pos = V * [1.5, 1.0]
+    for measure in ("qc", "iso"):
+        r = strictmin.deform(V, F, idx, pos, method="linf", measure=measure)
+        assert r.status == "solved", r.message
+        assert "nothing to optimise" in r.message
+        assert r.summary["frame_iterations"] == 0 and r.iterations == 0
+        assert r.max_distortion == pytest.approx(1.5)
+
+
 def test_surface_deforms_in_3d(square):
     # A 3D triangle surface takes 3D handles (as the CLI): handles at their rest positions
     # give the identity map, distortion 0.
