@@ -81,6 +81,7 @@ int parse_pin(const std::string& pin) {
 int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto threads = limit_threads(a.out.threads);
+  refuse_frame_iterations(a.solver, std::nullopt, "interp");
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);
   options.local_global.max_iterations = a.lg_iterations;

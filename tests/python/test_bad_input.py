@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import strictmin
-from conftest import grid, run_cli, square_handles
+from conftest import ellipsoid, grid, run_cli, square_handles
 
 
 @pytest.fixture
@@ -214,6 +214,24 @@ def test_images_beyond_1e150_are_refused(square):
         strictmin.distortion(V, F, V + np.inf)
     # 1e140 is within the limit: the closed form (fd of x -> s x is |s - 1| sqrt(2)).
     assert strictmin.distortion(V, F, V * 1e140, "fd").max() == pytest.approx(np.sqrt(2) * 1e140)
+
+
+def test_keywords_that_do_not_apply_are_refused(square):
+    # frame_iterations (qc / iso) and start (arap / asap) were ignored elsewhere.
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*'fd'"):
+        strictmin.deform(V, F, idx, pos, measure="fd", frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*'arap'"):
+        strictmin.param(V, F, measure="arap", frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*interp"):
+        strictmin.interp(V, F, V * 2, 0.5, frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies"):
+        strictmin.gparam(*ellipsoid(), frame_iterations=3)
+    for measure in ("fd", "qc", "iso"):
+        with pytest.raises(ValueError, match=f"start applies to measure 'arap' or 'asap'.*'{measure}'"):
+            strictmin.deform(V, F, idx, pos, measure=measure, start="rest")
+    assert strictmin.deform(V, F, idx, pos, measure="qc", frame_iterations=3).usable
+    assert strictmin.deform(V, F, idx, pos, measure="arap", start="rest").usable
 
 
 def test_every_vertex_a_handle_is_solved_under_qc_and_iso(square):
