@@ -31,8 +31,10 @@ inline void check_message(const InputError& e, const std::string& name, const st
     require(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f, "control character in the message: " + message);
   const std::string prefix = name + ": line ";
   if (message.rfind(prefix, 0) != 0) return;
+  // Lines end as the readers end them (io/text_parse.h): at '\n', "\r\n" or a '\r' alone.
   long lines = 1;
-  for (const char c : text) lines += c == '\n' ? 1 : 0;
+  for (size_t i = 0; i < text.size(); ++i)
+    lines += text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')) ? 1 : 0;
   size_t end = prefix.size();
   long number = 0;
   while (end < message.size() && message[end] >= '0' && message[end] <= '9' && number < 1000000000)
