@@ -105,6 +105,18 @@ class Interp(unittest.TestCase):
         # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
         self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
         self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)
+        # An empty item of a list (the option parser dropped it: "0.5,,1" ran two frames).
+        for times in ("0.5,,1", "0.5,", ",0.5", "0.5, ,1"):
+            p = run("interp", self.src, self.dst, "--t", times, "--summary", os.path.join(self.dir, "t.json"),
+                    check_code=1)
+            self.assertIn(f"--t '{times}': an empty time", p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "t.json")))
+        self.assertIn("--t: 'half' is not a number", run("interp", self.src, self.dst, "--t", "0,half",
+                                                           check_code=1).stderr)
+        # Lists in several --t values, spaces around the times.
+        s = json.loads(run("interp", self.src, self.dst, "--t", "0, 0.25", "--t", "1", "--summary", "-",
+                           "--quiet").stdout)
+        self.assertEqual([f["t"] for f in s["frames"]], [0, 0.25, 1])
         # -0 is 0 (it wrote PREFIX_0 and PREFIX_-0, one frame twice).
         self.assertIn("0 is given twice", run("interp", self.src, self.dst, "--t", "0,-0", check_code=1).stderr)
         self.assertIn("--pin", run("interp", self.src, self.dst, "--pin", "middle", check_code=1).stderr)
