@@ -133,6 +133,14 @@ class Interp(unittest.TestCase):
         self.assertIn("every element fixed after", levels())
         self.assertNotIn("after 1 levels", levels())
         self.assertIn("the level fell to k_min after 1 levels", levels("--k-min", "0.1"))
+        # worst_level_gap is null with or without local steps: direct's levels bound field
+        # deviation against the interpolated rotations held fixed, not the distance reported.
+        for extra in ([], ["--lg-iterations", "0"]):
+            s = json.loads(run("interp", self.src, self.dst, "--t", "0.5", "--method", "direct", "--delta-k", "1e-4",
+                               "--summary", "-", "--quiet", *extra).stdout)["frames"][0]
+            self.assertIsNone(s["worst_level_gap"], extra)
+            self.assertIsNone(s["lower_bound"], extra)
+            self.assertIsNotNone(s["fd_step_lower_bound"], extra)
         # The local-global step options of docs/interp.md are accepted (they were refused);
         # --lg-extrapolation is refused by name (it was accepted and ignored: the targets are the
         # blended shapes' rotations, which are not extrapolated).
