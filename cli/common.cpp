@@ -39,7 +39,9 @@ CLI::Validator number_check(std::function<bool(double)> ok, const std::string& r
           return "'" + text + "' is not a number";
         }
         if (used != text.size()) return "'" + text + "' is not a number";
-        if (!std::isfinite(v) || !ok(v)) return "value " + text + " is out of range: must be " + range;
+        // inf passes "> 0" as a comparison: say why it is refused (every flag takes finite values).
+        if (!std::isfinite(v)) return "value " + text + " is not a finite number (must be " + range + ")";
+        if (!ok(v)) return "value " + text + " is out of range: must be " + range;
         return "";
       },
       range);

@@ -18,6 +18,7 @@ namespace {
 
 struct DeformArgs {
   std::string mesh, handles, example, output, measure = "fd", start = "l2";
+  const CLI::Option* start_option = nullptr;  // --start, to refuse it where it does not apply
   LocalGlobalArgs lg;
   SolverArgs solver;
   OutputOptions out;
@@ -35,7 +36,14 @@ int run_deform(const DeformArgs& a) {
   if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use fd, arap, asap, qc or iso)");
   options.measure = *measure;
   refuse_local_global_flags(a.lg, options.measure);
+  refuse_frame_iterations(a.solver, options.measure, "deform");
   if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
+  // The start of local-global; fd, qc and iso start from the rest pose and the L2 map whatever
+  // --start said.
+  if (a.start_option && a.start_option->count() > 0 && options.measure != Measure::Arap &&
+      options.measure != Measure::Asap)
+    throw InputError("--start applies to --measure arap or asap (the start of their local-global iterations), not " +
+                     measure_name(options.measure));
   options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
   apply_local_global_options(a.lg, options.local_global);
   options.no_flips = a.lg.no_flips;
@@ -102,7 +110,7 @@ void add_deform_command(CLI::App& app, int& exit_code) {
                   "(sigma1/sigma2) or iso (max(sigma1, 1/sigma2)): planar meshes, methods l2 (the L2 fd start map), "
                   "linf, direct; convex cones around per-triangle frames (qc by bisection, iso one program per frame set), never a flipped triangle")
       ->capture_default_str();
-  cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
+  args->start_option = cmd->add_option("--start", args->start, "arap/asap: start from the l2 fd map or the rest pose")->capture_default_str();
   add_local_global_options(*cmd, args->lg);
   cmd->add_option("-o,--output", args->output, "Output mesh (.obj, .off, .mesh, .ply with per-face distortion)");
   add_solver_options(*cmd, args->solver);

@@ -84,6 +84,13 @@ int run_eval(const EvalArgs& a) {
   if (measure_text == "auto") measure_text = parametrization ? "arap" : "fd";
   const auto measure = parse_measure(measure_text);
   if (!measure) throw InputError("--measure: unknown measure '" + a.measure + "' (use auto, fd, arap, asap, qc or iso)");
+  // The library's reason (map_distortion) with the flag and the file it is about.
+  if (*measure == Measure::FieldDeviation && parametrization && !rest.is_planar())
+    throw InputError("--measure fd: " +
+                     (a.mapped.empty() ? "the texture coordinates of " + a.rest + " are" : a.mapped + " is") +
+                     " a parametrization of a surface, and fd of a parametrization needs its target frames (gparam's "
+                     "field, param's starting map), which a map alone does not carry; evaluate it with arap, asap, qc "
+                     "or iso");
 
   const MapDistortion d = map_distortion(rest, mapped, *measure, a.rest, a.mapped.empty() ? a.rest : a.mapped);
   if (!a.output.empty()) {

@@ -11,13 +11,14 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/tasks/interp.h"
+#include "io/text_parse.h"
 
 namespace strictmin::cli {
 namespace {
 
 struct InterpArgs {
   std::string source, target, output, pin = "centroid";
-  std::vector<double> times{0.5};
+  std::vector<std::string> times{"0.5"};  // as given: comma-separated lists (parse_times)
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start (docs/interp.md)
@@ -78,17 +79,40 @@ int parse_pin(const std::string& pin) {
   throw InputError("--pin takes 'centroid' or a vertex index (0-based), not '" + pin + "'");
 }
 
+// --t's values, each a comma-separated list. Split here, not by the option parser, which
+// dropped empty items ("0.5,,1" ran two frames, "0.5," one) where a time was meant.
+std::vector<double> parse_times(const std::vector<std::string>& args) {
+  std::vector<double> times;
+  for (const std::string& arg : args) {
+    for (size_t start = 0;;) {
+      const size_t comma = arg.find(',', start);
+      std::string item = arg.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      item.erase(0, item.find_first_not_of(" \t"));
+      item.erase(item.find_last_not_of(" \t") + 1);
+      double t = 0;
+      if (item.empty())
+        throw InputError("--t " + io_detail::quote_token(arg) + ": an empty time (each comma separates two times)");
+      if (!io_detail::parse_double(item, t)) throw InputError("--t: " + io_detail::quote_token(item) + " is not a number");
+      times.push_back(t);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  return times;
+}
+
 int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto threads = limit_threads(a.out.threads);
+  refuse_frame_iterations(a.solver, std::nullopt, "interp");
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);
   options.local_global.max_iterations = a.lg_iterations;
   options.local_global.relative_change = a.lg_tolerance;
   apply_local_global_step_options(a.lg_steps, options.local_global);
   options.pin_vertex = parse_pin(a.pin);
-  if (a.times.empty()) throw InputError("--t needs at least one time in [0, 1]");
-  std::vector<double> times = a.times;
+  std::vector<double> times = parse_times(a.times);
+  if (times.empty()) throw InputError("--t needs at least one time in [0, 1]");
   for (double& t : times) t += 0.0;  // -0 is 0 (it wrote PREFIX_-0 beside PREFIX_0, the same frame)
   for (size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
@@ -173,10 +197,7 @@ void add_interp_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("target", args->target, "Target pose: same vertices and elements as SOURCE")->required();
   cmd->add_option("--t", args->times, "Times in [0, 1], comma-separated (0 = source, 1 = target), each once")
-      ->delimiter(',')
-      ->check(CLI::Validator(
-          [](std::string& s) { return s.find_first_not_of(" \t") == std::string::npos ? std::string("an empty time") : std::string(); },
-          "", "non-empty"))
+      ->type_name("LIST")
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output,
                   "Output prefix: frame t goes to PREFIX_<t>.<ext>, t printed with %g (0.25, 0.5, 1), ext from SOURCE")

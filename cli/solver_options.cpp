@@ -70,13 +70,20 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
                 "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
       ->capture_default_str()
       ->check(at_least(0));
-  g->add_option("--frame-iterations", a.frame_iterations,
+  a.frame_iterations_option = g->add_option("--frame-iterations", a.frame_iterations,
                 "qc/iso: cap on frame iterations (each a level program or bisection for the current frames; >= 1)")
       ->capture_default_str()
       ->check(at_least(1));
   g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this (>= 1)")
       ->capture_default_str()
       ->check(at_least(1));
+}
+
+void refuse_frame_iterations(const SolverArgs& a, const std::optional<Measure>& measure, const std::string& task) {
+  if (!a.frame_iterations_option || a.frame_iterations_option->count() == 0) return;
+  if (measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)) return;
+  throw InputError("--frame-iterations applies to --measure qc or iso (their frame iterations), not " +
+                   (measure ? measure_name(*measure) + ", which has none" : task + ", which has no such measure"));
 }
 
 void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& a) {

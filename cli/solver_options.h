@@ -2,6 +2,7 @@
 // The --method option and every method's options, shared by all tasks.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,14 @@ struct SolverArgs {
   int exact_max_elements = 3000;
   // qc, iso
   int frame_iterations = 50;
+  const CLI::Option* frame_iterations_option = nullptr;  // set by add_solver_options
 };
 
 void add_solver_options(CLI::App& cmd, SolverArgs& args);
+// Throws InputError when --frame-iterations was given but the run has no frame iterations
+// (a measure other than qc or iso; no measure: a task without them, named `task`): it
+// would be ignored.
+void refuse_frame_iterations(const SolverArgs& args, const std::optional<Measure>& measure, const std::string& task);
 
 // arap / asap local-global flags of deform and param, and --no-flips.
 struct LocalGlobalArgs {

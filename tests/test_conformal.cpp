@@ -271,6 +271,32 @@ TEST(Conformal, ReversedTriangleOfHandlesIsInfeasible) {
   EXPECT_NE(r.message.find("element 4"), std::string::npos) << r.message;
 }
 
+// Every vertex a handle: nothing to optimise, solved at once with the handles' map (the frame
+// loop ran to its cap over an empty program and said max-iterations, "still lowering").
+TEST(Conformal, EveryVertexFixedIsSolvedWithoutFrameIterations) {
+  Problem p = make_problem(make_grid(2, 2));
+  std::vector<Handle> h;
+  for (int v = 0; v < p.num_vertices; ++v) {
+    const Eigen::Vector2d q = p.positions.row(v).transpose();
+    h.push_back({v, Eigen::Vector2d(1.5 * q.x() + 0.1 * q.y() * q.y(), q.y())});
+  }
+  p.fix(h);
+  for (Measure m : {Measure::Quasiconformal, Measure::Isometric}) {
+    ConformalOptions o;
+    o.measure = m;
+    ConformalStats stats;
+    const Result r = solve_conformal_linf(p, p.positions, o, &stats);
+    EXPECT_EQ(r.status, SolveStatus::Solved) << measure_name(m) << ": " << r.message;
+    EXPECT_NE(r.message.find("nothing to optimise"), std::string::npos) << r.message;
+    EXPECT_EQ(stats.frame_iterations, 0);
+    EXPECT_EQ(r.iterations, 0);
+    EXPECT_TRUE(r.positions.isApprox(p.positions));
+    const Eigen::VectorXd d = conformal_distortion(p, m, p.positions);
+    EXPECT_TRUE(r.distortion.isApprox(d));
+    EXPECT_GT(d.maxCoeff(), 1.4);
+  }
+}
+
 TEST(Conformal, TetProblemsAreBadInput) {
   Problem p = make_problem(make_tet_box(1, 1, 1));
   p.fix({Handle{0, Eigen::Vector3d::Zero()}});

@@ -130,10 +130,30 @@ TEST(Validate, ScaleDecidesNothingButTheSizeLimit) {
   m.V.col(0) *= 1.7e308;  // the side itself overflows a double
   m.V(0, 0) = -1.7e308;
   expect_invalid(m, {"too large", "above 1.8e308"});
-  // The image of a map (no geometry checks) may be of any size.
+  // The image of a map (no geometry checks) may be collapsed or tiny, but not beyond 1e150:
+  // its distortions overflowed (eval: infinite maxima; interp: frames "solved" with none finite).
+  for (double scale : {0.0, 1e-200, 1e149}) {
+    m = square();
+    m.V *= scale;
+    EXPECT_NO_THROW(validate_mesh(m, "m.obj", nullptr, false)) << scale;
+  }
   m = square();
   m.V *= 1e200;
-  EXPECT_NO_THROW(validate_mesh(m, "m.obj", nullptr, false));
+  try {
+    validate_mesh(m, "m.obj", nullptr, false);
+    ADD_FAILURE() << "an image of 1e200 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("m.obj: vertex 1 (0-based) has the coordinate 1e+200, beyond 1e150"),
+              std::string::npos)
+        << e.what();
+  }
+  // UVs are held to the same limit, with or without the geometry checks.
+  m = square();
+  m.UV = m.V.leftCols(2);
+  m.FUV = m.F;
+  m.UV(2, 1) = -1e160;
+  for (bool geometry : {true, false})
+    EXPECT_THROW(validate_mesh(m, "m.obj", nullptr, geometry), InputError) << geometry;
 }
 
 TEST(Validate, ZeroVolumeTet) {

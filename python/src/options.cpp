@@ -74,7 +74,10 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
   else if (key == "pin_threshold") s.direct.pin_threshold = real(key, v);
   else if (key == "warm_levels") s.direct.warm_levels = flag(key, v);
   else if (key == "exact_max_elements") s.exact.max_elements = integer(key, v);
-  else if (key == "frame_iterations") s.frame_iterations = integer(key, v);
+  else if (key == "frame_iterations") {
+    s.frame_iterations = integer(key, v);
+    o.frame_iterations_given = true;
+  }
   else if (key == "threads") o.threads = integer(key, v);
   else if (key == "lg_iterations") o.local_global.max_iterations = integer(key, v);
   else if (key == "lg_tolerance") o.local_global.relative_change = real(key, v);
@@ -83,7 +86,10 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
     o.local_global.target_extrapolation = real(key, v);
   else if (key == "lg_warm_start") o.local_global.warm_start = flag(key, v);
   else if (key == "lg_cold_start") o.local_global.warm_start = !flag(key, v);  // the flag's own name
-  else if (key == "start" && task == Task::Deform) o.start = text(key, v);
+  else if (key == "start" && task == Task::Deform) {
+    o.start = text(key, v);
+    o.start_given = true;
+  }
   else if (key == "pin" && task == Task::Interp) {
     if (py::isinstance<py::str>(v)) {
       if (text(key, v) != "centroid")
@@ -113,6 +119,15 @@ void refuse_local_global_keys(const TaskOptions& o, Measure measure) {
   if (o.local_global_key.empty() || measure == Measure::Arap || measure == Measure::Asap) return;
   throw InputError(o.local_global_key + " applies to measure 'arap' or 'asap' (their local-global iterations), not '" +
                    measure_name(measure) + "', which takes no local steps");
+}
+
+void refuse_measure_keys(const TaskOptions& o, std::optional<Measure> measure) {
+  if (o.frame_iterations_given && !(measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)))
+    throw InputError("frame_iterations applies to measure 'qc' or 'iso' (their frame iterations), not " +
+                     (measure ? "'" + measure_name(*measure) + "', which has none" : std::string("interp")));
+  if (o.start_given && !(measure && (*measure == Measure::Arap || *measure == Measure::Asap)))
+    throw InputError("start applies to measure 'arap' or 'asap' (the start of their local-global iterations), not '" +
+                     (measure ? measure_name(*measure) : std::string("?")) + "'");
 }
 
 TaskOptions parse_options(Task task, const std::string& function, const std::string& method,

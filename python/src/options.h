@@ -3,6 +3,7 @@
 // defaults (docs/python.md lists them per function).
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <string>
 
 #include "strictmin/measures/measures.h"
@@ -23,11 +24,17 @@ struct TaskOptions {
   int pin = -1;               // interp: -1 the centroid, else a vertex
   int threads = 0;            // 0: all cores
   std::string local_global_key;  // the first lg_* keyword given (refuse_local_global_keys)
+  bool frame_iterations_given = false, start_given = false;  // refuse_measure_keys
 };
 
 // ValueError naming the first lg_* keyword given when the measure takes no local steps (fd,
 // qc, iso): it would be ignored (as the command line refuses its --lg-* flags).
 void refuse_local_global_keys(const TaskOptions& options, Measure measure);
+
+// ValueError when frame_iterations is given without qc or iso (no measure: interp), or start
+// (deform) without arap or asap: either would be ignored (as the command line refuses
+// --frame-iterations and --start there).
+void refuse_measure_keys(const TaskOptions& options, std::optional<Measure> measure);
 
 // method: the CLI's --method; options: the other keywords. Unknown keywords raise
 // TypeError, wrong types TypeError, values out of range ValueError naming the keyword and

@@ -95,6 +95,7 @@ py::dict deform_py(const RowMatrixXd& V, const RowMatrixXi& F, const Eigen::Vect
   DeformOptions options;
   options.measure = measure_of(measure);
   refuse_local_global_keys(o, options.measure);
+  refuse_measure_keys(o, options.measure);
   const Mesh mesh = make_mesh(V, F, "mesh", true, nullptr);
   // Tets and triangle surfaces in 3D move in 3D; planar triangles in 2D (as the CLI).
   const int dim = mesh.element_type() == ElementType::Tetrahedron || !mesh.is_planar() ? 3 : 2;
@@ -126,6 +127,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   ParamOptions options;
   options.measure = measure_of(measure);
   refuse_local_global_keys(o, options.measure);
+  refuse_measure_keys(o, options.measure);
   // init names the starting map (tutte, lscm); a method name there is relax's start.
   if ((method == "tutte" || method == "lscm") && (o.init == "tutte" || o.init == "lscm") && o.init != method)
     throw InputError("init='" + o.init + "' contradicts method='" + method + "': that method is the " + method +
@@ -194,6 +196,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
     throw InputError("unknown or unavailable measure '" + measure + "' for gparam (use fd or arap)");
   options.measure = *m;
   refuse_local_global_keys(o, options.measure);
+  refuse_measure_keys(o, options.measure);
   if (edge_length && quads) throw InputError("give edge_length or quads, not both");
   if (edge_length && !(*edge_length > 0 && std::isfinite(*edge_length)))
     throw InputError("edge_length must be a positive finite number, got " + io_detail::number_text(*edge_length));
@@ -271,6 +274,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
                    const std::vector<double>& times, const std::string& method, const py::dict& kwargs,
                    const py::object& progress) {
   TaskOptions o = parse_options(Task::Interp, "interp", method, kwargs);
+  refuse_measure_keys(o, std::nullopt);
   if (times.empty()) throw InputError("t needs at least one time in [0, 1]");
   for (double t : times)
     if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + std::to_string(t) + " is outside [0, 1]");

@@ -2,6 +2,8 @@
 // Adjacency checks sort edge / face keys: O(n log n), no per-element allocation.
 #include "strictmin/mesh/validate.h"
 
+#include "image_sizes.h"  // beside this file: the fuzz targets build it without src/ on the include path
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
@@ -30,6 +32,9 @@ class Validator {
   void run(std::vector<std::string>* warnings, bool check_geometry) {
     check_not_empty();
     check_structure(true);
+    // With the geometry checks the bounding box bounds V's sizes (check_measures); an image
+    // (a map's MAPPED mesh, an interpolation target) and UVs are held to the same limit here.
+    check_sizes(!check_geometry);
     if (check_geometry) check_measures();
     check_duplicates();
     if (tets_)
@@ -127,8 +132,28 @@ class Validator {
     }
   }
 
-  // Zero area / volume relative to the mesh size; records the signs for check_signs().
+  // Coordinates (when `vertices`) and UVs within kLargestSize: beyond it a map's distortion
+  // overflows to inf (reported as a flip) or its solve to NaN (an interpolation target of 1e200
+  // came out "solved" with no finite distortion).
  public:
+  void check_sizes(bool vertices) const {
+    const auto too_large = [](double x) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", x);
+      return std::string(text) + ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the coordinates)";
+    };
+    for (Eigen::Index i = 0; vertices && i < mesh_.V.rows(); ++i)
+      for (Eigen::Index k = 0; k < mesh_.V.cols(); ++k)
+        if (std::abs(mesh_.V(i, k)) > kMaxSize)
+          fail("vertex " + std::to_string(i) + " (0-based) has the coordinate " + too_large(mesh_.V(i, k)));
+    if (!mesh_.has_uv()) return;
+    for (Eigen::Index i = 0; i < mesh_.UV.rows(); ++i)
+      for (Eigen::Index k = 0; k < mesh_.UV.cols(); ++k)
+        if (std::abs(mesh_.UV(i, k)) > kMaxSize)
+          fail("texture coordinate " + std::to_string(i) + " (0-based) has the value " + too_large(mesh_.UV(i, k)));
+  }
+
+  // Zero area / volume relative to the mesh size; records the signs for check_signs().
   void check_measures() {
     const auto& V = mesh_.V;
     const auto& F = mesh_.F;
@@ -335,6 +360,10 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
   Validator(mesh, source.empty() ? std::string("mesh") : source).check_structure(require_finite);
+}
+
+void check_image_sizes(const Mesh& mesh, const std::string& source) {
+  Validator(mesh, source.empty() ? std::string("mesh") : source).check_sizes(true);
 }
 
 void check_element_measures(const Mesh& mesh, const std::string& source) {

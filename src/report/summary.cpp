@@ -239,6 +239,10 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& o
   // --lg-iterations 0: one global solve, no local-global iteration (iterations and history
   // are that solve's).
   if (options.local_global.max_iterations == 0) j["local_global_iterations"] = 0;
+  // direct's levels bound field deviation against the interpolated rotations held fixed, not
+  // the distance reported (the best rotation's): null, as lower_bound (docs/interp.md). With
+  // --lg-iterations 0 the single direct solve's own gap was reported.
+  if (j.contains("worst_level_gap")) j["worst_level_gap"] = nullptr;
   return j;
 }
 

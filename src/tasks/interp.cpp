@@ -12,6 +12,7 @@
 #include "strictmin/measures/polar.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/tasks/rotation_unwrap.h"
+#include "mesh/image_sizes.h"
 
 namespace strictmin {
 namespace {
@@ -62,6 +63,7 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
     : source_(source) {
   check_mesh_structure(source, sn);
   check_mesh_structure(target, tn);
+  check_image_sizes(target, tn);  // a target of 1e200 gave frames with no finite distortion, "solved"
   check_same_connectivity(source, target, sn, tn);
   if (source.num_elements() == 0) throw InputError(sn + " has no elements");
   if (source.F.cols() == 4) kind_ = InterpKind::Tets;

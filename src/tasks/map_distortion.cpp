@@ -6,6 +6,7 @@
 #include "strictmin/mesh/validate.h"
 #include "strictmin/problem/check_problem.h"
 #include "strictmin/problem/problem.h"
+#include "mesh/image_sizes.h"
 #include "problem/frame_axes.h"
 
 namespace strictmin {
@@ -66,6 +67,7 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
                              const std::string& mapped_name) {
   check_mesh_structure(rest, rest_name);
   check_mesh_structure(mapped, mapped_name, false);  // its UVs are read by index; a map may hold anything
+  check_image_sizes(mapped, mapped_name);            // beyond 1e150 the distortions overflow
   if (rest.num_elements() != mapped.num_elements() || rest.F.cols() != mapped.F.cols())
     throw InputError(mapped_name + " has " + std::to_string(mapped.num_elements()) + " elements of " +
                      std::to_string(mapped.F.cols()) + " corners, " + rest_name + " has " +

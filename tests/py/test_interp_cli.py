@@ -105,6 +105,18 @@ class Interp(unittest.TestCase):
         # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
         self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
         self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)
+        # An empty item of a list (the option parser dropped it: "0.5,,1" ran two frames).
+        for times in ("0.5,,1", "0.5,", ",0.5", "0.5, ,1"):
+            p = run("interp", self.src, self.dst, "--t", times, "--summary", os.path.join(self.dir, "t.json"),
+                    check_code=1)
+            self.assertIn(f"--t '{times}': an empty time", p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "t.json")))
+        self.assertIn("--t: 'half' is not a number", run("interp", self.src, self.dst, "--t", "0,half",
+                                                           check_code=1).stderr)
+        # Lists in several --t values, spaces around the times.
+        s = json.loads(run("interp", self.src, self.dst, "--t", "0, 0.25", "--t", "1", "--summary", "-",
+                           "--quiet").stdout)
+        self.assertEqual([f["t"] for f in s["frames"]], [0, 0.25, 1])
         # -0 is 0 (it wrote PREFIX_0 and PREFIX_-0, one frame twice).
         self.assertIn("0 is given twice", run("interp", self.src, self.dst, "--t", "0,-0", check_code=1).stderr)
         self.assertIn("--pin", run("interp", self.src, self.dst, "--pin", "middle", check_code=1).stderr)
@@ -121,6 +133,14 @@ class Interp(unittest.TestCase):
         self.assertIn("every element fixed after", levels())
         self.assertNotIn("after 1 levels", levels())
         self.assertIn("the level fell to k_min after 1 levels", levels("--k-min", "0.1"))
+        # worst_level_gap is null with or without local steps: direct's levels bound field
+        # deviation against the interpolated rotations held fixed, not the distance reported.
+        for extra in ([], ["--lg-iterations", "0"]):
+            s = json.loads(run("interp", self.src, self.dst, "--t", "0.5", "--method", "direct", "--delta-k", "1e-4",
+                               "--summary", "-", "--quiet", *extra).stdout)["frames"][0]
+            self.assertIsNone(s["worst_level_gap"], extra)
+            self.assertIsNone(s["lower_bound"], extra)
+            self.assertIsNotNone(s["fd_step_lower_bound"], extra)
         # The local-global step options of docs/interp.md are accepted (they were refused);
         # --lg-extrapolation is refused by name (it was accepted and ignored: the targets are the
         # blended shapes' rotations, which are not extrapolated).

@@ -33,6 +33,14 @@ class OptionRanges(unittest.TestCase):
                     self.assertFalse(os.path.exists(out))
                     self.assertFalse(os.path.exists(summary))
 
+    def test_infinite_values_are_said_to_be_not_finite(self):
+        # "value inf is out of range: must be > 0" gave a reason inf meets.
+        for flag, value, rule in (("--delta-k", "inf", "> 0"), ("--lg-tolerance", "-inf", ">= 0"),
+                                  ("--gap", "nan", "in (0, 1)")):
+            with self.subTest(flag=flag, value=value):
+                p = run("deform", "--example", "square", "--measure", "arap", flag, value, check_code=1)
+                self.assertIn(f"{flag}: value {value} is not a finite number (must be {rule})", p.stderr)
+
 
 class Statuses(unittest.TestCase):
     def test_a_cap_is_max_iterations_exit_2_with_the_result_written(self):

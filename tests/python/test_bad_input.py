@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import strictmin
-from conftest import grid, run_cli, square_handles
+from conftest import ellipsoid, grid, run_cli, square_handles
 
 
 @pytest.fixture
@@ -198,6 +198,53 @@ def test_tasks(square):
             strictmin.compare(np.ones(3), np.ones(3), **bad)
     # Infinite maxima tie (inf - inf made each of two identical vectors the lesser).
     assert strictmin.compare(np.array([np.inf, 1.0]), np.array([np.inf, 1.0])).order == 0
+
+
+def test_images_beyond_1e150_are_refused(square):
+    # An image's coordinates overflowed its distortions: an interpolation target of 1e200 gave
+    # frames "solved" with a NaN maximum, distortion() inf (as the CLI's eval and interp).
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="target: vertex 1 \\(0-based\\) has the coordinate .*, beyond 1e150"):
+        strictmin.interp(V, F, V * 1e200, 0.5)
+    with pytest.raises(ValueError, match="U has a coordinate beyond 1e150"):
+        strictmin.distortion(V, F, V * 1e200)
+    with pytest.raises(ValueError, match="U has a coordinate beyond 1e150"):
+        strictmin.distortion(V, F, np.full((F.size, 2), 1e200))  # one image per corner
+    with pytest.raises(ValueError, match="U has a non-finite coordinate"):
+        strictmin.distortion(V, F, V + np.inf)
+    # 1e140 is within the limit: the closed form (fd of x -> s x is |s - 1| sqrt(2)).
+    assert strictmin.distortion(V, F, V * 1e140, "fd").max() == pytest.approx(np.sqrt(2) * 1e140)
+
+
+def test_keywords_that_do_not_apply_are_refused(square):
+    # frame_iterations (qc / iso) and start (arap / asap) were ignored elsewhere.
+    V, F, idx, pos = square
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*'fd'"):
+        strictmin.deform(V, F, idx, pos, measure="fd", frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*'arap'"):
+        strictmin.param(V, F, measure="arap", frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies to measure 'qc' or 'iso'.*interp"):
+        strictmin.interp(V, F, V * 2, 0.5, frame_iterations=3)
+    with pytest.raises(ValueError, match="frame_iterations applies"):
+        strictmin.gparam(*ellipsoid(), frame_iterations=3)
+    for measure in ("fd", "qc", "iso"):
+        with pytest.raises(ValueError, match=f"start applies to measure 'arap' or 'asap'.*'{measure}'"):
+            strictmin.deform(V, F, idx, pos, measure=measure, start="rest")
+    assert strictmin.deform(V, F, idx, pos, measure="qc", frame_iterations=3).usable
+    assert strictmin.deform(V, F, idx, pos, measure="arap", start="rest").usable
+
+
+def test_every_vertex_a_handle_is_solved_under_qc_and_iso(square):
+    # Nothing to optimise: the frame loop ran to its cap and said max-iterations.
+    V, F, _, _ = square
+    idx = np.arange(len(V))
+    pos = V * [1.5, 1.0]
+    for measure in ("qc", "iso"):
+        r = strictmin.deform(V, F, idx, pos, method="linf", measure=measure)
+        assert r.status == "solved", r.message
+        assert "nothing to optimise" in r.message
+        assert r.summary["frame_iterations"] == 0 and r.iterations == 0
+        assert r.max_distortion == pytest.approx(1.5)
 
 
 def test_surface_deforms_in_3d(square):

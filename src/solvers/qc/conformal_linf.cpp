@@ -129,6 +129,15 @@ Result solve_conformal_linf(const Problem& problem, const Eigen::MatrixXd& start
       out.time_s = seconds_since(t0);
       return out;
     }
+  // Every element a constant (every vertex fixed): nothing to optimise, as for linf. The frame
+  // loop ran to its cap over an empty program and ended max-iterations "while still lowering".
+  if (parts.count() == 0) {
+    out.positions = start;
+    out.distortion = fixed_values;
+    out.message = "nothing to optimise: every element has all its vertices fixed";
+    out.time_s = seconds_since(t0);
+    return out;
+  }
   double current = qc::free_max(setup, x);  // with frames from x: the measure itself
   // 3. A start that is not orientation-preserving, for iso: first any orientation-preserving
   //    map, by qc's well-scaled cones at K = 1e6 (iso's at S = 1e6 would mix 1e6 and 1e-6 in
