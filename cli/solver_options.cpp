@@ -81,7 +81,11 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
 
 void refuse_frame_iterations(const SolverArgs& a, const std::optional<Measure>& measure, const std::string& task) {
   if (!a.frame_iterations_option || a.frame_iterations_option->count() == 0) return;
-  if (measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)) return;
+  if (measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)) {
+    if (a.method != "l2") return;
+    throw InputError("--frame-iterations applies to --method linf or direct with --measure " + measure_name(*measure) +
+                     "; --method l2 is their starting map, with no frame iterations");
+  }
   throw InputError("--frame-iterations applies to --measure qc or iso (their frame iterations), not " +
                    (measure ? measure_name(*measure) + ", which has none" : task + ", which has no such measure"));
 }

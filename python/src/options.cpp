@@ -125,6 +125,9 @@ void refuse_measure_keys(const TaskOptions& o, std::optional<Measure> measure) {
   if (o.frame_iterations_given && !(measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)))
     throw InputError("frame_iterations applies to measure 'qc' or 'iso' (their frame iterations), not " +
                      (measure ? "'" + measure_name(*measure) + "', which has none" : std::string("interp")));
+  if (o.frame_iterations_given && o.solver.method == Method::L2)
+    throw InputError("frame_iterations applies to method 'linf' or 'direct' with measure '" + measure_name(*measure) +
+                     "'; method 'l2' is their starting map, with no frame iterations");
   if (o.start_given && !(measure && (*measure == Measure::Arap || *measure == Measure::Asap)))
     throw InputError("start applies to measure 'arap' or 'asap' (the start of their local-global iterations), not '" +
                      (measure ? measure_name(*measure) : std::string("?")) + "'");

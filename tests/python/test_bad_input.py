@@ -230,6 +230,8 @@ def test_keywords_that_do_not_apply_are_refused(square):
     for measure in ("fd", "qc", "iso"):
         with pytest.raises(ValueError, match=f"start applies to measure 'arap' or 'asap'.*'{measure}'"):
             strictmin.deform(V, F, idx, pos, measure=measure, start="rest")
+    with pytest.raises(ValueError, match="frame_iterations applies to method 'linf' or 'direct'.*'l2'"):
+        strictmin.deform(V, F, idx, pos, "l2", measure="qc", frame_iterations=3)  # the starting map
     assert strictmin.deform(V, F, idx, pos, measure="qc", frame_iterations=3).usable
     assert strictmin.deform(V, F, idx, pos, measure="arap", start="rest").usable
 
