@@ -279,7 +279,9 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   for (double t : times)
     if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + std::to_string(t) + " is outside [0, 1]");
   const Mesh source = make_mesh(V, F, "source", true, nullptr);
-  if (V_target.rows() != V.rows() || V_target.cols() != V.cols())
+  // The same vertices; their dimensions may differ (a planar source and a 3D target: a
+  // surface interpolation, as the command line reads such files).
+  if (V_target.rows() != V.rows())
     throw InputError("target has " + std::to_string(V_target.rows()) + " by " + std::to_string(V_target.cols()) +
                      " vertices, source " + std::to_string(V.rows()) + " by " + std::to_string(V.cols()));
   const Mesh target = make_mesh(V_target, F, "target", false, nullptr);

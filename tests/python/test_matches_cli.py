@@ -107,6 +107,21 @@ def test_interp(tmp_path):
     np.testing.assert_allclose(frames[1].distortion, dist, rtol=0, atol=1e-12)
 
 
+def test_interp_of_a_planar_source_to_a_surface(tmp_path):
+    # A 2-column source and a 3-column target: the command line reads such files as a surface
+    # interpolation; the module refused the arrays ("target has ... by 3 vertices").
+    V, F = grid(4)
+    Vt = np.column_stack([V * 1.2, 0.3 * V[:, 0] * V[:, 1]])
+    src, dst = tmp_path / "source.obj", tmp_path / "target.obj"
+    src.write_text("".join(f"v {x!r} {y!r}\n" for x, y in V) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F))
+    strictmin.write_mesh(dst, Vt, F)
+    summary, dist = cli_run(tmp_path, ["interp", src, dst, "--t", "0.5", "--method", "linf", "--lg-iterations", 3])
+    r = strictmin.interp(V, F, Vt, 0.5, method="linf", lg_iterations=3)
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.positions.shape == (len(V), 3)
+
+
 @pytest.mark.parametrize("measure", ["arap", "qc"])
 def test_distortion_matches_eval(tmp_path, measure):
     n = 4
