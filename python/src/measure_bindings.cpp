@@ -1,12 +1,9 @@
 // distortion, compare.
 #include <pybind11/eigen.h>
 
-#include <cmath>
-
 #include "bindings.h"
 #include "convert.h"
 #include "strictmin/io/input_error.h"
-#include "strictmin/mesh/validate.h"
 #include "strictmin/report/strict_order.h"
 #include "strictmin/tasks/map_distortion.h"
 
@@ -20,15 +17,6 @@ py::dict distortion_of(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatr
   if (!m) throw InputError("unknown measure '" + measure + "' (use fd, arap, asap, qc or iso)");
   const Mesh rest = make_mesh(V, F, "mesh", true, nullptr);
   const Eigen::Index corners = rest.F.cols();
-  // As eval's MAPPED mesh (check_image_sizes): finite, and within 1e150 where the distortions
-  // would overflow.
-  for (Eigen::Index i = 0; i < U.rows(); ++i)
-    for (Eigen::Index k = 0; k < U.cols(); ++k)
-      if (!(std::abs(U(i, k)) <= kLargestSize))
-        throw InputError("U has a " +
-                         std::string(std::isfinite(U(i, k)) ? "coordinate beyond 1e150 (scale the map)"
-                                                            : "non-finite coordinate") +
-                         " in row " + std::to_string(i));
   MapDistortion d;
   if (U.rows() == rest.V.rows()) {
     // As `strictmin eval REST MAPPED` with the same connectivity (a planar map given in 3D
@@ -38,7 +26,7 @@ py::dict distortion_of(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatr
     mapped.F = rest.F;
     d = map_distortion(rest, mapped, *m, "V", "U");
   } else if (U.rows() == rest.F.rows() * corners) {
-    d = map_distortion(rest, Eigen::MatrixXd(U), *m);  // one image per element corner (seamed UV layouts)
+    d = map_distortion(rest, Eigen::MatrixXd(U), *m, "U");  // one image per element corner (seamed UV layouts)
   } else {
     throw InputError("U has " + std::to_string(U.rows()) + " rows: give one per vertex (" +
                      std::to_string(rest.V.rows()) + ") or one per element corner (" +

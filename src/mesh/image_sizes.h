@@ -13,4 +13,8 @@ namespace strictmin {
 // image is a result). Throws InputError naming `source`, the vertex and the value.
 void check_image_sizes(const Mesh& mesh, const std::string& source);
 
+// The same for a matrix of image points (one per row, named `row_name` i in the message), and
+// non-finite entries refused alike (check_image_sizes leaves those to check_mesh_structure).
+void check_values_within_sizes(const Eigen::MatrixXd& values, const std::string& source, const std::string& row_name);
+
 }  // namespace strictmin

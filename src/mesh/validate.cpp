@@ -137,20 +137,8 @@ class Validator {
   // came out "solved" with no finite distortion).
  public:
   void check_sizes(bool vertices) const {
-    const auto too_large = [](double x) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%g", x);
-      return std::string(text) + ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the coordinates)";
-    };
-    for (Eigen::Index i = 0; vertices && i < mesh_.V.rows(); ++i)
-      for (Eigen::Index k = 0; k < mesh_.V.cols(); ++k)
-        if (std::abs(mesh_.V(i, k)) > kMaxSize)
-          fail("vertex " + std::to_string(i) + " (0-based) has the coordinate " + too_large(mesh_.V(i, k)));
-    if (!mesh_.has_uv()) return;
-    for (Eigen::Index i = 0; i < mesh_.UV.rows(); ++i)
-      for (Eigen::Index k = 0; k < mesh_.UV.cols(); ++k)
-        if (std::abs(mesh_.UV(i, k)) > kMaxSize)
-          fail("texture coordinate " + std::to_string(i) + " (0-based) has the value " + too_large(mesh_.UV(i, k)));
+    if (vertices) check_values_within_sizes(mesh_.V, source_, "vertex");
+    if (mesh_.has_uv()) check_values_within_sizes(mesh_.UV, source_, "texture coordinate");
   }
 
   // Zero area / volume relative to the mesh size; records the signs for check_signs().
@@ -360,6 +348,23 @@ void validate_mesh(const Mesh& mesh, const std::string& source, std::vector<std:
 
 void check_mesh_structure(const Mesh& mesh, const std::string& source, bool require_finite) {
   Validator(mesh, source.empty() ? std::string("mesh") : source).check_structure(require_finite);
+}
+
+// Every entry finite and within kLargestSize: beyond it a map's distortion overflows to inf
+// (reported as a flip) or its solve to NaN (an interpolation target of 1e200 came out
+// "solved" with no finite distortion). Names `source`, the row (as `row_name` i) and the value.
+void check_values_within_sizes(const Eigen::MatrixXd& values, const std::string& source, const std::string& row_name) {
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (Eigen::Index k = 0; k < values.cols(); ++k) {
+      const double x = values(i, k);
+      if (std::abs(x) <= kMaxSize) continue;
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", x);
+      const std::string row = source + ": " + row_name + " " + std::to_string(i) + " (0-based) has ";
+      if (!std::isfinite(x)) throw InputError(row + "a non-finite coordinate (" + text + ")");
+      throw InputError(row + "the coordinate " + text +
+                       ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the coordinates)");
+    }
 }
 
 void check_image_sizes(const Mesh& mesh, const std::string& source) {

@@ -23,7 +23,9 @@ Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X
   return C;
 }
 
-MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Measure measure) {
+MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& images, Measure measure,
+                             const std::string& images_name) {
+  check_values_within_sizes(images, images_name, "corner image");  // beyond 1e150 the distortions overflow
   const Problem p = make_problem(rest);
   const int c = p.corners(), E = p.num_elements();
   const bool surface_to_3d = p.domain_dim == 2 && images.cols() == 3 && !rest.is_planar();

@@ -21,9 +21,11 @@ struct MapDistortion {
 // Rest planar triangles (2D or constant z) or tets: images of the same dimension.
 // Rest 3D surface triangles: images 2D (a parametrization, each triangle in its own
 // isometric frame) or 3D (a deformed surface; fd then compares J with the rest frame).
-// Throws InputError for a rest mesh that fails check_mesh_structure or images that are not
-// #E*corners rows of that dimension (images that are not finite give non-finite distortion).
-MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& corner_images, Measure measure);
+// Throws InputError for a rest mesh that fails check_mesh_structure, or images that are not
+// #E*corners rows of that dimension, or not finite, or beyond 1e150 (their distortions
+// overflow); the message names them `images_name`.
+MapDistortion map_distortion(const Mesh& rest, const Eigen::MatrixXd& corner_images, Measure measure,
+                             const std::string& images_name = "the map");
 
 // The map from rest to mapped: same number of elements required. Uses mapped's UVs when it
 // has them (a UV-mapped OBJ is the map of its surface), else mapped's vertex positions
