@@ -61,6 +61,10 @@ void check_output_paths(const OutputOptions& out);
 // Whether two paths name one file: the same name written another way (relative, with ..,
 // through a link), or one file under two names (a hard link).
 bool same_file(const std::string& a, const std::string& b);
+
+// Whether the option (set by its add_ function, null before) was given on the command line:
+// the refusals of flags that do not apply to the chosen measure or method.
+inline bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
 // Every output of a run at once, before any work: the checks above for the task's own
 // outputs and the common ones, no two flags naming one file (the later write would replace
 // the earlier), no output naming one of the run's inputs (`inputs`: {what, path}, e.g.

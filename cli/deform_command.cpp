@@ -40,8 +40,7 @@ int run_deform(const DeformArgs& a) {
   if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
   // The start of local-global; fd, qc and iso start from the rest pose and the L2 map whatever
   // --start said.
-  if (a.start_option && a.start_option->count() > 0 && options.measure != Measure::Arap &&
-      options.measure != Measure::Asap)
+  if (given(a.start_option) && options.measure != Measure::Arap && options.measure != Measure::Asap)
     throw InputError("--start applies to --measure arap or asap (the start of their local-global iterations), not " +
                      measure_name(options.measure));
   options.start = a.start == "l2" ? DeformStart::L2 : DeformStart::Rest;
@@ -116,10 +115,7 @@ void add_deform_command(CLI::App& app, int& exit_code) {
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, cmd, &exit_code] {
-    note_local_global_flags(*cmd, args->lg);
-    exit_code = run_deform(*args);
-  });
+  cmd->callback([args, &exit_code] { exit_code = run_deform(*args); });
 }
 
 }  // namespace strictmin::cli

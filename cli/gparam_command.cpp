@@ -166,12 +166,15 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();
-  cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap (>= 1)")
-      ->capture_default_str()
-      ->check(at_least(1));
-  cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative, >= 0)")
-      ->capture_default_str()
-      ->check(at_least(0));
+  // gparam's own --lg-iterations and --lg-tolerance (arap only), refused with fd as the steps' flags.
+  args->lg_steps.options.push_back(
+      cmd->add_option("--lg-iterations", args->lg_iterations, "arap: local-global iteration cap (>= 1)")
+          ->capture_default_str()
+          ->check(at_least(1)));
+  args->lg_steps.options.push_back(
+      cmd->add_option("--lg-tolerance", args->lg_tolerance, "arap: stop when the maximum changes by less (relative, >= 0)")
+          ->capture_default_str()
+          ->check(at_least(0)));
   add_local_global_step_options(*cmd, args->lg_steps);
   add_solver_options(*cmd, args->solver);
   add_output_options(*cmd, args->out);
@@ -180,7 +183,6 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
     args->edge_length_given = cmd->count("--edge-length") > 0;
     args->quads_given = cmd->count("--quads") > 0;
     args->curvature_alignment_given = cmd->count("--curvature-alignment") > 0;
-    note_local_global_flags(*cmd, args->lg_steps);
     exit_code = run_gparam(*args);
   });
 }

@@ -128,10 +128,7 @@ void add_param_command(CLI::App& app, int& exit_code) {
       ->default_str("tutte");
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, cmd, &exit_code] {
-    note_local_global_flags(*cmd, args->lg);
-    exit_code = run_param(*args);
-  });
+  cmd->callback([args, &exit_code] { exit_code = run_param(*args); });
 }
 
 }  // namespace strictmin::cli

@@ -80,7 +80,7 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
 }
 
 void refuse_frame_iterations(const SolverArgs& a, const std::optional<Measure>& measure, const std::string& task) {
-  if (!a.frame_iterations_option || a.frame_iterations_option->count() == 0) return;
+  if (!given(a.frame_iterations_option)) return;
   if (measure && (*measure == Measure::Quasiconformal || *measure == Measure::Isometric)) {
     if (a.method != "l2") return;
     throw InputError("--frame-iterations applies to --method linf or direct with --measure " + measure_name(*measure) +
@@ -91,30 +91,30 @@ void refuse_frame_iterations(const SolverArgs& a, const std::optional<Measure>& 
 }
 
 void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& a) {
-  cmd.add_option("--lg-acceleration", a.lg_acceleration,
+  a.options.push_back(cmd.add_option("--lg-acceleration", a.lg_acceleration,
                   "arap/asap: Anderson acceleration window of local-global (0: off); an accelerated step is "
                   "taken only when it does not raise the maximum (l2: the energy)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 50));
-  cmd.add_option("--lg-extrapolation", a.lg_extrapolation,
+      ->check(CLI::Range(0, 50)));
+  a.options.push_back(cmd.add_option("--lg-extrapolation", a.lg_extrapolation,
                   "arap/asap: extrapolate each target along its last change by this factor before a global step "
                   "(a momentum on the rotations, 0: off); a step that raises the maximum is repeated without")
       ->capture_default_str()
       ->check(at_least(0))  // 0: off; at_least also refuses nan
-      ->check(CLI::Range(0.0, 1.0));
-  cmd.add_flag("--lg-cold-start", a.lg_cold_start,
+      ->check(CLI::Range(0.0, 1.0)));
+  a.options.push_back(cmd.add_flag("--lg-cold-start", a.lg_cold_start,
                 "arap/asap with linf/direct: start every global step's interior-point method afresh (default: from "
-                "the previous step's dual)");
+                "the previous step's dual)"));
 }
 
 void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
-  cmd.add_option("--lg-iterations", a.lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
+  a.options.push_back(cmd.add_option("--lg-iterations", a.lg_iterations, "arap/asap: local-global iteration cap (>= 1)")
       ->capture_default_str()
-      ->check(at_least(1));
-  cmd.add_option("--lg-tolerance", a.lg_tolerance,
+      ->check(at_least(1)));
+  a.options.push_back(cmd.add_option("--lg-tolerance", a.lg_tolerance,
                   "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
       ->capture_default_str()
-      ->check(at_least(0));
+      ->check(at_least(0)));
   add_local_global_step_options(cmd, a);
   cmd.add_flag("--no-flips", a.no_flips,
                 "planar/disk and tet maps: add no flipped element to the start (linf steps inside orientation-preserving "
@@ -135,16 +135,12 @@ void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o)
   apply_local_global_step_options(a, o);
 }
 
-void note_local_global_flags(const CLI::App& cmd, LocalGlobalArgs& a) {
-  a.given.clear();
-  for (const char* flag : {"--lg-iterations", "--lg-tolerance", "--lg-acceleration", "--lg-extrapolation", "--lg-cold-start"})
-    if (cmd.count(flag) > 0) a.given.push_back(flag);
-}
-
 void refuse_local_global_flags(const LocalGlobalArgs& a, Measure measure) {
-  if (a.given.empty() || measure == Measure::Arap || measure == Measure::Asap) return;
-  throw InputError(a.given.front() + " applies to --measure arap or asap (their local-global iterations), not " +
-                   measure_name(measure) + ", which takes no local steps");
+  if (measure == Measure::Arap || measure == Measure::Asap) return;
+  for (const CLI::Option* option : a.options)
+    if (given(option))
+      throw InputError(option->get_name() + " applies to --measure arap or asap (their local-global iterations), not " +
+                       measure_name(measure) + ", which takes no local steps");
 }
 
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out, const std::string& extra_names) {

@@ -56,7 +56,7 @@ struct LocalGlobalArgs {
   double lg_extrapolation = LocalGlobalOptions{}.target_extrapolation;
   bool lg_cold_start = false;
   bool no_flips = false;
-  std::vector<std::string> given;  // the local-global flags on the command line (note_local_global_flags)
+  std::vector<const CLI::Option*> options;  // the local-global flags, set by the add_ functions (refuse_local_global_flags)
 };
 void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& args);
 // Only the steps' flags (--lg-acceleration, --lg-extrapolation, --lg-cold-start): gparam's arap.
@@ -64,9 +64,6 @@ void add_local_global_step_options(CLI::App& cmd, LocalGlobalArgs& args);
 void apply_local_global_step_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
 // Sets the local-global options from the flags (the caller sets no_flips on its task).
 void apply_local_global_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
-// Records which of --lg-iterations, --lg-tolerance, --lg-acceleration, --lg-extrapolation and
-// --lg-cold-start the command line gave (from the command's callback).
-void note_local_global_flags(const CLI::App& cmd, LocalGlobalArgs& args);
 // Throws InputError naming the first local-global flag given when the measure takes no
 // local steps (fd, qc, iso): it would be ignored.
 void refuse_local_global_flags(const LocalGlobalArgs& args, Measure measure);
