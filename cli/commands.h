@@ -11,5 +11,6 @@ void add_demo_command(CLI::App& app, int& exit_code);
 void add_interp_command(CLI::App& app, int& exit_code);
 void add_param_command(CLI::App& app, int& exit_code);
 void add_gparam_command(CLI::App& app, int& exit_code);
+void add_quads_command(CLI::App& app, int& exit_code);
 
 }  // namespace strictmin::cli

@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   strictmin::cli::add_interp_command(app, exit_code);
   strictmin::cli::add_param_command(app, exit_code);
   strictmin::cli::add_gparam_command(app, exit_code);
+  strictmin::cli::add_quads_command(app, exit_code);
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   const strictmin::InterruptScope interrupts(interrupt_requested);

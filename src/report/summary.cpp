@@ -246,4 +246,34 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& o
   return j;
 }
 
+nlohmann::json quad_extraction_summary(const QuadExtraction& x) {
+  nlohmann::json s;
+  s["status"] = x.complete ? "complete" : "holes";
+  s["quads"] = x.mesh.num_quads();
+  s["vertices"] = x.mesh.num_vertices();
+  s["edges"] = x.edges;
+  s["uv_area"] = x.uv_area;
+  s["flipped_triangles"] = x.flipped_triangles;
+  s["cones"] = x.cones;
+  s["dropped_squares"] = x.dropped_squares;
+  s["squares_touching_flips"] = x.squares_touching_flips;
+  s["squares_wrapped"] = x.squares_wrapped;
+  s["squares_not_covered_once"] = x.squares_not_covered_once;
+  s["boundary_edges"] = x.boundary_edges;
+  s["holes"] = x.holes;
+  s["non_manifold_edges"] = x.non_manifold_edges;
+  s["euler_characteristic"] = x.euler_characteristic;
+  s["surface_euler_characteristic"] = x.surface_euler_characteristic;
+  nlohmann::json valences = nlohmann::json::object();
+  int irregular = 0;
+  for (const auto& [valence, count] : x.valences) {
+    valences[std::to_string(valence)] = count;
+    if (valence != 4) irregular += count;
+  }
+  s["valences"] = valences;
+  s["irregular_vertices"] = irregular;
+  s["time_s"] = x.time_s;
+  return s;
+}
+
 }  // namespace strictmin

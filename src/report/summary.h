@@ -13,6 +13,7 @@
 #include "strictmin/tasks/interp.h"
 #include "strictmin/tasks/method.h"
 #include "strictmin/tasks/param.h"
+#include "strictmin/tasks/quad_extraction.h"
 #include "strictmin/solvers/conformal.h"
 
 namespace strictmin {
@@ -63,6 +64,12 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
 // the file or array that gave it).
 nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& options, const GParamOutcome& outcome,
                               const std::string& field, const SummaryFiles& files);
+
+// A quad extraction (strictmin quads, gparam --quad-mesh): status ("complete" or "holes"),
+// quads, vertices, edges, uv_area, flipped_triangles, cones, dropped_squares and why,
+// boundary_edges, holes, non_manifold_edges, euler_characteristic,
+// surface_euler_characteristic, valences ({"3": count, ...}), irregular_vertices, time_s.
+nlohmann::json quad_extraction_summary(const QuadExtraction& x);
 
 // interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
 // lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.

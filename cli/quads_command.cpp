@@ -1,0 +1,76 @@
+// strictmin quads MAP.obj -o QUADS.obj: the quad mesh of an integer-grid map (docs/gparam.md,
+// "Quad meshes").
+#include <memory>
+
+#include "commands.h"
+#include "common.h"
+#include "report/summary.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/io/mesh_io.h"
+#include "strictmin/tasks/quad_extraction.h"
+
+namespace strictmin::cli {
+namespace {
+
+struct QuadsArgs {
+  std::string map, output;
+  double tolerance = 1e-6;
+  OutputOptions out;
+};
+
+std::string quads_phrase(const QuadExtraction& x) {
+  std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
+                     " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
+  if (x.complete) return line + ", complete";
+  return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
+         " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
+         std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +
+         " wrap onto themselves, " + std::to_string(x.squares_not_covered_once) + " are not covered once)";
+}
+
+int run_quads(const QuadsArgs& a) {
+  check_run_outputs(a.out, {{"--output", a.output}}, "", {{"the map", a.map}});
+  if (!a.output.empty() && lowercase_extension(a.output) != ".obj")
+    throw InputError("--output " + a.output + ": the quad mesh is written as .obj only");
+  if (!a.out.distortion.empty()) throw InputError("--distortion does not apply to quads (no distortion is measured)");
+  QuadExtractionOptions options;
+  options.tolerance = a.tolerance;
+  std::vector<std::string> warnings;
+  const Mesh map = read_mesh(a.map, &warnings);
+  for (const auto& w : warnings) progress(a.out, "warning: " + w);
+  progress(a.out, "quads: " + std::to_string(map.num_elements()) + " triangles");
+  const QuadExtraction x = extract_quads(map, options, a.map);
+  if (!a.output.empty()) write_quad_obj(a.output, x.mesh);
+  nlohmann::json s = quad_extraction_summary(x);
+  s["task"] = "quads";
+  s["input"] = a.map;
+  s["output"] = a.output;
+  s["tolerance"] = a.tolerance;
+  add_provenance_summary(s);
+  write_outputs(a.out, s, Eigen::VectorXd());
+  progress(a.out, "quads: " + quads_phrase(x));
+  return x.complete ? kExitSuccess : kExitNotConverged;
+}
+
+}  // namespace
+
+std::string quad_extraction_phrase(const QuadExtraction& x) { return quads_phrase(x); }
+
+void add_quads_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<QuadsArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "quads",
+      "The quad mesh of an integer-grid map (gparam --integer-grid's OBJ, or any seamless per-corner UV map with "
+      "integer seam translations and cones at integer points): one quad per unit square of UV.");
+  cmd->add_option("map", args->map, "The map: a closed triangle surface in .obj with vt and f v/vt")->required();
+  cmd->add_option("-o,--output", args->output, "Write the quad mesh (.obj: v, vt of the integer corners, f v/vt)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "UV units: how far a seam translation or a cone may be from the grid, and how near a vertex or an "
+                  "edge a grid point counts as on it")
+      ->capture_default_str()
+      ->check(open_range(0, 0.1));
+  add_output_options(*cmd, args->out);
+  cmd->callback([args, &exit_code] { exit_code = run_quads(*args); });
+}
+
+}  // namespace strictmin::cli

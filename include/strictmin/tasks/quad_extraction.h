@@ -1,0 +1,76 @@
+#pragma once
+// Quad meshes from integer-grid maps (docs/gparam.md, "Quad meshes"). On an integer-grid map
+// (a seamless per-corner UV map whose seam translations are integers and whose cones lie at
+// integer points; gparam --integer-grid) the integer lines close up across the seams, and
+// every unit square [i, i+1] x [j, j+1] of UV is one quad of the surface.
+//
+// Each square is found from a triangle containing its centre and flooded across the edges
+// that cross its open interior, carried through each seam's transition: the faces it
+// covers, their UV areas inside it (which must add up to 1) and the triangles holding its
+// four corners. A corner is a surface point: a vertex, a point on an edge or inside a face,
+// so corners found from different squares are one vertex of the quad mesh.
+//
+// A square that touches a flipped (or zero-area) triangle, wraps onto itself, or is not
+// covered exactly once is left out: the quad mesh then has holes, and the extraction says
+// so (complete = false). A map without flips whose squares are all covered gives a closed
+// quad mesh with the surface's Euler characteristic, one quad per unit of UV area, and a
+// vertex of valence 4 - k at each cone of index k/4.
+#include <Eigen/Core>
+#include <map>
+#include <string>
+
+#include "strictmin/mesh/mesh.h"
+
+namespace strictmin {
+
+struct QuadExtractionOptions {
+  // UV units: how far a seam translation or a cone may be from the grid, and how close to a
+  // vertex or an edge a grid point counts as on it.
+  double tolerance = 1e-6;
+  // Empty when the options are usable, else why not.
+  std::string invalid_reason() const;
+};
+
+struct QuadMesh {
+  Eigen::MatrixXd V;    // #vertices by 3, on the input surface
+  Eigen::MatrixXi Q;    // #quads by 4, counter-clockwise about the surface's outward normal
+  Eigen::MatrixXd UV;   // integer UVs of the quads' corners, each quad in its own chart
+  Eigen::MatrixXi QUV;  // #quads by 4 rows of UV
+  // Where each vertex lies: a triangle of the input and barycentric coordinates in it.
+  Eigen::VectorXi vertex_face;
+  Eigen::MatrixXd vertex_barycentric;  // #vertices by 3
+
+  int num_vertices() const { return static_cast<int>(V.rows()); }
+  int num_quads() const { return static_cast<int>(Q.rows()); }
+};
+
+struct QuadExtraction {
+  QuadMesh mesh;
+  // Closed, manifold, every unit square a quad, and the surface's Euler characteristic.
+  bool complete = false;
+  double uv_area = 0;          // the map's signed UV area: the number of squares when complete
+  int flipped_triangles = 0;   // of the map: UV area <= 0
+  int cones = 0;               // vertices of the map with a non-zero index
+  int dropped_squares = 0;     // squares left out (the reasons below, each square counted once)
+  int squares_touching_flips = 0, squares_wrapped = 0, squares_not_covered_once = 0;
+  int edges = 0;               // of the quad mesh
+  int boundary_edges = 0;      // quad edges with one quad (around the holes)
+  int holes = 0;               // connected groups of boundary edges
+  int non_manifold_edges = 0;  // a directed quad edge used twice
+  int euler_characteristic = 0;          // of the quad mesh
+  int surface_euler_characteristic = 0;  // of the input surface
+  std::map<int, int> valences;           // valence -> how many vertices
+  double time_s = 0;
+};
+
+// Throws InputError (naming `source`) when the map has no per-corner UVs, is not one closed
+// manifold triangle surface, is not seamless, or is not an integer-grid map (a seam
+// translation or a cone off the grid), or when the options are invalid.
+QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& options = {},
+                             const std::string& source = "");
+
+// Writes the quad mesh as OBJ: v, vt (each quad's integer corners) and f v/vt with four
+// corners. Atomic (io/atomic_file.h); throws InputError when the path cannot be written.
+void write_quad_obj(const std::string& path, const QuadMesh& quads);
+
+}  // namespace strictmin

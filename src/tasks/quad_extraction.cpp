@@ -1,0 +1,208 @@
+// Quad meshes from integer-grid maps (include/strictmin/tasks/quad_extraction.h).
+#include "strictmin/tasks/quad_extraction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "mesh/union_find.h"
+#include "strictmin/field/surface_graph.h"
+#include "strictmin/io/input_error.h"
+#include "strictmin/param/topology.h"
+#include "tasks/square_flood.h"
+#include "tasks/uv_transitions.h"
+
+namespace strictmin {
+namespace {
+
+// More unit squares than this are refused: the UVs are then most likely not in grid units.
+constexpr double kMaxSquares = 5e7;
+
+std::string prefix(const std::string& source) { return source.empty() ? std::string("quads: ") : source + ": "; }
+
+void check_map(const Mesh& map, const std::string& source) {
+  if (map.element_type() != ElementType::Triangle || map.dim() != 3)
+    throw InputError(prefix(source) + "quad extraction needs a triangle surface in 3D");
+  if (!map.has_uv())
+    throw InputError(prefix(source) + "the mesh has no per-corner UVs (OBJ vt and f v/vt): nothing to extract");
+  if (!map.UV.allFinite()) throw InputError(prefix(source) + "the UVs are not all finite");
+  for (int f = 0; f < map.num_elements(); ++f)
+    for (int i = 0; i < 3; ++i)
+      if (map.FUV(f, i) < 0 || map.FUV(f, i) >= map.UV.rows())
+        throw InputError(prefix(source) + "face " + std::to_string(f) + " (0-based) has a UV index out of range");
+  const SurfaceTopology t = surface_topology(map);
+  if (!t.boundary_loops.empty())
+    throw InputError(prefix(source) + "the surface has " + std::to_string(t.boundary_loops.size()) +
+                     " boundary loop(s) (first at vertex " + std::to_string(t.boundary_loops.front().front()) +
+                     ", 0-based); quad extraction takes closed surfaces");
+}
+
+struct Square {
+  std::array<SquareCorner, 4> corners;
+};
+
+struct Squares {
+  std::vector<Square> quads;
+  int touching_flips = 0, wrapped = 0, not_covered_once = 0;
+};
+
+// Every unit square, flooded once: started from each face of positive UV area at each
+// half-integer centre it holds, unless an earlier flood already passed that centre there.
+Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std::vector<UvTransition>& transitions,
+                           double tolerance) {
+  Squares out;
+  SquareFlooder flooder(map, graph, transitions, tolerance);
+  std::unordered_set<SurfacePointKey, SurfacePointKeyHash> started;  // (face, 2 x centre)
+  const auto start_key = [](int f, const Eigen::Vector2d& c) {
+    return SurfacePointKey{SurfacePointKey::Face, f, std::llround(2 * c.x()), std::llround(2 * c.y())};
+  };
+  for (int f = 0; f < graph.num_faces; ++f) {
+    if (!(doubled_uv_area(map, f) > 0)) continue;
+    Eigen::Vector2d lo = corner_uv(map, f, 0), hi = lo;
+    for (int i = 1; i < 3; ++i) lo = lo.cwiseMin(corner_uv(map, f, i)), hi = hi.cwiseMax(corner_uv(map, f, i));
+    for (double i = std::ceil(lo.x() - 0.5 - tolerance); i <= std::floor(hi.x() - 0.5 + tolerance); ++i)
+      for (double j = std::ceil(lo.y() - 0.5 - tolerance); j <= std::floor(hi.y() - 0.5 + tolerance); ++j) {
+        const Eigen::Vector2d c(i + 0.5, j + 0.5);
+        if (!uv_face_contains(map, f, c, tolerance) || started.count(start_key(f, c))) continue;
+        const SquareFlood s = flooder.flood(f, c);
+        for (const auto& [g, centre] : s.centres) started.insert(start_key(g, centre));
+        switch (s.outcome) {
+          case SquareFlood::Outcome::Quad: out.quads.push_back({s.corners}); break;
+          case SquareFlood::Outcome::TouchesFlip: ++out.touching_flips; break;
+          case SquareFlood::Outcome::Wraps: ++out.wrapped; break;
+          case SquareFlood::Outcome::NotCoveredOnce: ++out.not_covered_once; break;
+        }
+      }
+  }
+  return out;
+}
+
+// One vertex per surface point, one row of UV per (vertex, integer UV) pair; a square found
+// twice (its centre on an edge) is kept once.
+QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
+  QuadMesh q;
+  std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> vertex_of, uv_of;
+  std::vector<Eigen::Vector3d> positions, barycentrics;
+  std::vector<int> faces;
+  std::vector<Eigen::Vector2d> uvs;
+  std::vector<std::array<int, 4>> quads, quad_uvs;
+  std::set<std::array<int, 4>> kept;
+  for (const Square& s : squares) {
+    std::array<int, 4> ids{}, uv_ids{};
+    for (int k = 0; k < 4; ++k) {
+      const SquareCorner& c = s.corners[k];
+      const auto [it, added] = vertex_of.emplace(c.key, static_cast<int>(positions.size()));
+      if (added) {
+        Eigen::Vector3d p = Eigen::Vector3d::Zero();
+        for (int i = 0; i < 3; ++i) p += c.barycentric(i) * map.V.row(map.F(c.face, i)).transpose();
+        positions.push_back(p);
+        barycentrics.push_back(c.barycentric);
+        faces.push_back(c.face);
+      }
+      ids[k] = it->second;
+      const SurfacePointKey uv_key{SurfacePointKey::Vertex, ids[k], std::llround(c.uv.x()), std::llround(c.uv.y())};
+      const auto [jt, uv_added] = uv_of.emplace(uv_key, static_cast<int>(uvs.size()));
+      if (uv_added) uvs.push_back(c.uv);
+      uv_ids[k] = jt->second;
+    }
+    std::array<int, 4> canonical = ids;
+    std::rotate(canonical.begin(), std::min_element(canonical.begin(), canonical.end()), canonical.end());
+    if (!kept.insert(canonical).second) continue;
+    quads.push_back(ids);
+    quad_uvs.push_back(uv_ids);
+  }
+  const int n = static_cast<int>(positions.size()), m = static_cast<int>(quads.size());
+  q.V.resize(n, 3);
+  q.vertex_face.resize(n);
+  q.vertex_barycentric.resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    q.V.row(i) = positions[i].transpose();
+    q.vertex_face(i) = faces[i];
+    q.vertex_barycentric.row(i) = barycentrics[i].transpose();
+  }
+  q.UV.resize(static_cast<int>(uvs.size()), 2);
+  for (size_t i = 0; i < uvs.size(); ++i) q.UV.row(static_cast<int>(i)) = uvs[i].transpose();
+  q.Q.resize(m, 4);
+  q.QUV.resize(m, 4);
+  for (int i = 0; i < m; ++i)
+    for (int k = 0; k < 4; ++k) q.Q(i, k) = quads[i][k], q.QUV(i, k) = quad_uvs[i][k];
+  return q;
+}
+
+// Edges, boundary, manifoldness, holes, Euler characteristic and valences of the quad mesh.
+void check_topology(QuadExtraction& x) {
+  const QuadMesh& q = x.mesh;
+  std::unordered_map<std::uint64_t, int> directed;
+  const auto edge_key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  std::vector<int> valence(q.num_vertices(), 0);
+  for (int i = 0; i < q.num_quads(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      ++directed[edge_key(q.Q(i, k), q.Q(i, (k + 1) % 4))];
+      ++valence[q.Q(i, k)];
+    }
+  UnionFind boundary(q.num_vertices());
+  std::vector<char> on_boundary(q.num_vertices(), 0);
+  int undirected_twice = 0;
+  for (const auto& [key, count] : directed) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    if (count > 1) ++x.non_manifold_edges;
+    if (directed.count(edge_key(b, a))) {
+      ++undirected_twice;
+      continue;
+    }
+    ++x.boundary_edges;
+    boundary.unite(a, b);
+    on_boundary[a] = on_boundary[b] = 1;
+  }
+  x.edges = undirected_twice / 2 + x.boundary_edges;
+  for (int v = 0; v < q.num_vertices(); ++v)
+    if (on_boundary[v] && boundary.find(v) == v) ++x.holes;
+  for (int v : valence) ++x.valences[v];
+  x.euler_characteristic = q.num_vertices() - x.edges + q.num_quads();
+}
+
+}  // namespace
+
+std::string QuadExtractionOptions::invalid_reason() const {
+  if (!(tolerance > 0 && tolerance < 0.1)) return "the tolerance must be in (0, 0.1) UV units";
+  return "";
+}
+
+QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& options, const std::string& source) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (const std::string why = options.invalid_reason(); !why.empty()) throw InputError(prefix(source) + why);
+  check_map(map, source);
+  const SurfaceGraph graph = surface_graph(map, source);
+  const std::vector<UvTransition> transitions = integer_uv_transitions(map, graph, options.tolerance, source);
+  const std::vector<int> quarters = cones_on_the_grid(map, graph, options.tolerance, source);
+
+  QuadExtraction x;
+  x.surface_euler_characteristic = graph.euler_characteristic();
+  x.cones = static_cast<int>(std::count_if(quarters.begin(), quarters.end(), [](int k) { return k != 0; }));
+  for (int f = 0; f < graph.num_faces; ++f) {
+    const double area2 = doubled_uv_area(map, f);
+    x.uv_area += area2 / 2;
+    if (!(area2 > 0)) ++x.flipped_triangles;
+  }
+  if (x.uv_area > kMaxSquares)
+    throw InputError(prefix(source) + "the map covers " + std::to_string(std::llround(x.uv_area)) +
+                     " unit squares (more than 5e7): are the UVs in grid units?");
+
+  const Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
+  x.squares_touching_flips = squares.touching_flips;
+  x.squares_wrapped = squares.wrapped;
+  x.squares_not_covered_once = squares.not_covered_once;
+  x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once;
+  x.mesh = assemble(map, squares.quads);
+  check_topology(x);
+  x.complete = x.dropped_squares == 0 && x.flipped_triangles == 0 && x.boundary_edges == 0 &&
+               x.non_manifold_edges == 0 && x.euler_characteristic == x.surface_euler_characteristic &&
+               std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area);
+  x.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return x;
+}
+
+}  // namespace strictmin

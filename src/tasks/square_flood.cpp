@@ -1,0 +1,185 @@
+// One unit square of an integer-grid map, followed over the surface (src/tasks/square_flood.h).
+#include "tasks/square_flood.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace strictmin {
+namespace {
+
+// The square's corners about its centre, counter-clockwise in its own frame.
+const std::array<Eigen::Vector2d, 4> kCornerOffsets = {Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(0.5, -0.5),
+                                                       Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(-0.5, 0.5)};
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Whether the segment a-b runs through the open square of centre c (shrunk by tol) over a
+// length of more than tol: clipped to the box one axis at a time (Liang-Barsky).
+bool crosses_open_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, double tol) {
+  const Eigen::Vector2d d = b - a;
+  double t0 = 0, t1 = 1;
+  for (int k = 0; k < 2; ++k) {
+    const double lo = c(k) - 0.5 + tol, hi = c(k) + 0.5 - tol;
+    if (d(k) == 0) {
+      if (a(k) <= lo || a(k) >= hi) return false;
+      continue;
+    }
+    double ta = (lo - a(k)) / d(k), tb = (hi - a(k)) / d(k);
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t1 > t0 && (t1 - t0) * d.norm() > tol;
+}
+
+// The signed area of triangle (p0, p1, p2) inside the closed square of centre c
+// (Sutherland-Hodgman against the square's four sides, then the shoelace formula).
+double clipped_area(const std::array<Eigen::Vector2d, 3>& triangle, const Eigen::Vector2d& c) {
+  std::vector<Eigen::Vector2d> poly(triangle.begin(), triangle.end()), next;
+  for (int side = 0; side < 4 && !poly.empty(); ++side) {
+    const int axis = side / 2;
+    const double sign = side % 2 == 0 ? 1.0 : -1.0;  // keep x >= lo, then x <= hi
+    const double bound = c(axis) - 0.5 * sign;
+    const auto inside = [&](const Eigen::Vector2d& p) { return sign * (p(axis) - bound) >= 0; };
+    next.clear();
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d& p = poly[i];
+      const Eigen::Vector2d& q = poly[(i + 1) % poly.size()];
+      if (inside(p)) next.push_back(p);
+      if (inside(p) != inside(q)) next.push_back(p + (q - p) * ((bound - p(axis)) / (q(axis) - p(axis))));
+    }
+    poly.swap(next);
+  }
+  double area = 0;
+  for (size_t i = 0; i < poly.size(); ++i) area += cross(poly[i], poly[(i + 1) % poly.size()]);
+  return area / 2;
+}
+
+std::array<Eigen::Vector2d, 3> face_uvs(const Mesh& map, int f) {
+  return {corner_uv(map, f, 0), corner_uv(map, f, 1), corner_uv(map, f, 2)};
+}
+
+// The distance of p from the line of side i (corner i to i + 1), positive inside a
+// counter-clockwise triangle.
+double side_distance(const std::array<Eigen::Vector2d, 3>& t, int i, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d a = t[i], b = t[(i + 1) % 3];
+  const double length = (b - a).norm();
+  return length > 0 ? cross(b - a, p - a) / length : 0.0;
+}
+
+Eigen::Vector3d barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vector2d& p) {
+  Eigen::Vector3d l;
+  for (int i = 0; i < 3; ++i) l(i) = std::max(0.0, cross(t[(i + 1) % 3] - p, t[(i + 2) % 3] - p));
+  const double sum = l.sum();
+  return sum > 0 ? Eigen::Vector3d(l / sum) : Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3);
+}
+
+SurfacePointKey key_at(const Eigen::Vector2d& p, int kind, int element) {
+  return {kind, element, static_cast<std::int64_t>(std::llround(p.x())), static_cast<std::int64_t>(std::llround(p.y()))};
+}
+
+}  // namespace
+
+bool uv_face_contains(const Mesh& map, int f, const Eigen::Vector2d& p, double tolerance) {
+  const auto t = face_uvs(map, f);
+  for (int i = 0; i < 3; ++i)
+    if (side_distance(t, i, p) < -tolerance) return false;
+  return true;
+}
+
+SquareFlooder::SquareFlooder(const Mesh& map, const SurfaceGraph& graph, const std::vector<UvTransition>& transitions,
+                             double tolerance)
+    : map_(map), graph_(graph), transitions_(transitions), tolerance_(tolerance), visits_(graph.num_faces) {}
+
+SquareFlood SquareFlooder::flood(int face, const Eigen::Vector2d& centre) {
+  ++stamp_;
+  SquareFlood out;
+  visits_[face] = {stamp_, centre, Eigen::Matrix2d::Identity()};
+  std::vector<int> queue{face};
+  std::array<bool, 4> found{};
+  bool flips = false;
+  wraps_ = false;
+  for (size_t next = 0; next < queue.size(); ++next) {
+    const int g = queue[next];
+    const Visit here = visits_[g];
+    flips = flips || !(doubled_uv_area(map_, g) > 0);
+    out.covered += clipped_area(face_uvs(map_, g), here.centre);
+    if (uv_face_contains(map_, g, here.centre, tolerance_)) out.centres.emplace_back(g, here.centre);
+    find_corners(g, here, centre, found, out);
+    for (int side = 0; side < 3; ++side) flips = !cross_to_neighbour(g, side, here, queue) || flips;
+  }
+  const bool corners_distinct = std::all_of(found.begin(), found.end(), [](bool b) { return b; }) &&
+                                [&] {
+                                  for (int i = 0; i < 4; ++i)
+                                    for (int j = i + 1; j < 4; ++j)
+                                      if (out.corners[i].key == out.corners[j].key) return false;
+                                  return true;
+                                }();
+  if (flips)
+    out.outcome = SquareFlood::Outcome::TouchesFlip;
+  else if (wraps_ || (std::all_of(found.begin(), found.end(), [](bool b) { return b; }) && !corners_distinct))
+    out.outcome = SquareFlood::Outcome::Wraps;
+  else if (!corners_distinct || std::abs(out.covered - 1) > std::max(1e-6, 100 * tolerance_))
+    out.outcome = SquareFlood::Outcome::NotCoveredOnce;
+  return out;
+}
+
+// Crosses side `side` of face when it runs through the open square; false when the edge is
+// degenerate in UV (its transition unknown). A face reached again in another chart sets wraps_.
+bool SquareFlooder::cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue) {
+  const auto t = face_uvs(map_, face);
+  if (!crosses_open_square(t[side], t[(side + 1) % 3], here.centre, tolerance_)) return true;
+  const int e = graph_.face_edges(face, side), h = graph_.neighbour(face, side);
+  const UvTransition& T = transitions_[e];
+  if (!T.known) return false;
+  const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == side;
+  const Eigen::Matrix2d R = T.rotation();
+  const Eigen::Vector2d centre = from_face0 ? T.to_face1(here.centre) : T.to_face0(here.centre);
+  const Eigen::Matrix2d frame = from_face0 ? Eigen::Matrix2d(R.transpose() * here.frame) : Eigen::Matrix2d(R * here.frame);
+  Visit& there = visits_[h];
+  if (there.stamp == stamp_) {
+    if ((there.centre - centre).norm() > 1e-6 || (there.frame - frame).norm() > 1e-9) wraps_ = true;
+    return true;
+  }
+  there = {stamp_, centre, frame};
+  queue.push_back(h);
+  return true;
+}
+
+// The square's corners (integer points) that lie in the closed face, each with its key.
+void SquareFlooder::find_corners(int face, const Visit& here, const Eigen::Vector2d& start_centre,
+                                 std::array<bool, 4>& found, SquareFlood& out) const {
+  const auto t = face_uvs(map_, face);
+  for (int k = 0; k < 4; ++k) {
+    if (found[k]) continue;
+    const Eigen::Vector2d q = here.centre + here.frame * kCornerOffsets[k];
+    const Eigen::Vector2d p(std::round(q.x()), std::round(q.y()));
+    if (!uv_face_contains(map_, face, p, tolerance_)) continue;
+    SquareCorner& c = out.corners[k];
+    c.face = face;
+    c.barycentric = barycentric(t, p);
+    c.uv = start_centre + kCornerOffsets[k];
+    found[k] = true;
+    int at_vertex = -1;
+    for (int i = 0; i < 3; ++i)
+      if ((t[i] - p).norm() <= tolerance_) at_vertex = i;
+    if (at_vertex >= 0) {
+      c.key = {SurfacePointKey::Vertex, map_.F(face, at_vertex), 0, 0};
+      c.barycentric = Eigen::Vector3d::Unit(at_vertex);
+      continue;
+    }
+    int on_side = -1;
+    double nearest = tolerance_;
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(side_distance(t, i, p)) <= nearest) nearest = std::abs(side_distance(t, i, p)), on_side = i;
+    if (on_side < 0) {
+      c.key = key_at(p, SurfacePointKey::Face, face);
+      continue;
+    }
+    const int e = graph_.face_edges(face, on_side);
+    const bool face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == on_side;
+    c.key = key_at(face0 || !transitions_[e].known ? p : transitions_[e].to_face0(p), SurfacePointKey::Edge, e);
+  }
+}
+
+}  // namespace strictmin
