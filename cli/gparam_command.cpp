@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "common.h"
 #include "gparam_report.h"
+#include "quad_output.h"
 #include "report_output.h"
 #include "solver_options.h"
 #include "strictmin/io/input_error.h"
@@ -22,7 +23,7 @@ namespace strictmin::cli {
 namespace {
 
 struct GParamArgs {
-  std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out, grid_guide;
+  std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out, grid_guide, quad_mesh;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
   bool edge_length_given = false, quads_given = false, curvature_alignment_given = false, parallel = false, integer_grid = false;
@@ -67,6 +68,8 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
       throw InputError("--grid-guide takes l2 or linf, not '" + a.grid_guide + "'");
     o.grid_guide = a.grid_guide == "linf" ? GParamOptions::GridGuide::Linf : GParamOptions::GridGuide::L2;
   }
+  if (!a.quad_mesh.empty() && !a.integer_grid)
+    throw InputError("--quad-mesh needs --integer-grid: quads come from an integer-grid map");
   if (!a.cones.empty()) {
     if (a.field != "smoothest") throw InputError("give --cones or --field " + a.field + ", not both");
     o.cones = read_cone_file(a.cones, mesh.num_vertices());
@@ -92,11 +95,17 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
 
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_run_outputs(a.out, {{"--output", a.output}, {"--field-out", a.field_out}, {"--cones-out", a.cones_out}},
+  check_run_outputs(a.out,
+                    {{"--output", a.output},
+                     {"--field-out", a.field_out},
+                     {"--cones-out", a.cones_out},
+                     {"--quad-mesh", a.quad_mesh}},
                     a.report.dir,
                     {{"the input mesh", a.mesh}, {"the --field file", is_field_name(a.field) ? "" : a.field},
                      {"the --cones file", a.cones}});
   check_uv_output_path(a.output);
+  if (!a.quad_mesh.empty() && lowercase_extension(a.quad_mesh) != ".obj")
+    throw InputError("--quad-mesh " + a.quad_mesh + ": the quad mesh is written as .obj only");
   const auto threads = limit_threads(a.out.threads);
   if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
   std::vector<std::string> warnings;
@@ -114,6 +123,17 @@ int run_gparam(const GParamArgs& a) {
   if (!a.cones_out.empty()) write_cone_file(a.cones_out, g.quarters);
   const std::string written = write_map(a.output, g.mapped, g.result.status);
   nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, written, a.out.distortion});
+  bool quads_complete = true;
+  if (!a.quad_mesh.empty()) {
+    progress(a.out, "gparam: quad extraction");
+    s["quad_mesh"] = status_usable(g.result.status)
+                         ? write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, &quads_complete)
+                         : nlohmann::json{{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
+    quads_complete = quads_complete && status_usable(g.result.status);
+    progress(a.out, "gparam: quad mesh " + s["quad_mesh"].value("status", std::string()) + ", " +
+                        std::to_string(s["quad_mesh"].value("quads", 0)) + " quads" +
+                        (s["quad_mesh"].contains("reason") ? ": " + s["quad_mesh"]["reason"].get<std::string>() : ""));
+  }
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, g.measured.distortion);
   if (!a.report.dir.empty())
@@ -123,7 +143,8 @@ int run_gparam(const GParamArgs& a) {
                       " flipped, seam error " + shown_number(g.seam_error) +
                       (o.integer_grid ? ", integer-grid error " + shown_number(g.integer_error) : std::string()) + ", " +
                       status_name(g.result.status));
-  return exit_code_for(g.result.status);
+  const int code = exit_code_for(g.result.status);
+  return code == kExitSuccess && !quads_complete ? kExitNotConverged : code;
 }
 
 }  // namespace
@@ -163,6 +184,9 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
                   "--integer-grid: the map whose values the rounding follows: l2 (default, the seamless L2 map) or linf "
                   "(the free L-infinity map, one solve more: as the grid shrinks the map tends to the L-infinity "
                   "optimum; often fewer flips, docs/gparam.md)");
+  cmd->add_option("--quad-mesh", args->quad_mesh,
+                  "--integer-grid: also write the map's quad mesh (.obj), one quad per unit square (as 'strictmin "
+                  "quads'); squares next to flipped triangles are left out as holes, and the exit code is then 2");
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();

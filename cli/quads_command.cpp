@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "quad_output.h"
 #include "report/summary.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
@@ -17,16 +18,6 @@ struct QuadsArgs {
   double tolerance = 1e-6;
   OutputOptions out;
 };
-
-std::string quads_phrase(const QuadExtraction& x) {
-  std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
-                     " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
-  if (x.complete) return line + ", complete";
-  return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
-         " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
-         std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +
-         " wrap onto themselves, " + std::to_string(x.squares_not_covered_once) + " are not covered once)";
-}
 
 int run_quads(const QuadsArgs& a) {
   check_run_outputs(a.out, {{"--output", a.output}}, "", {{"the map", a.map}});
@@ -48,13 +39,11 @@ int run_quads(const QuadsArgs& a) {
   s["tolerance"] = a.tolerance;
   add_provenance_summary(s);
   write_outputs(a.out, s, Eigen::VectorXd());
-  progress(a.out, "quads: " + quads_phrase(x));
+  progress(a.out, "quads: " + quad_extraction_phrase(x));
   return x.complete ? kExitSuccess : kExitNotConverged;
 }
 
 }  // namespace
-
-std::string quad_extraction_phrase(const QuadExtraction& x) { return quads_phrase(x); }
 
 void add_quads_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<QuadsArgs>();

@@ -259,6 +259,7 @@ nlohmann::json quad_extraction_summary(const QuadExtraction& x) {
   s["squares_touching_flips"] = x.squares_touching_flips;
   s["squares_wrapped"] = x.squares_wrapped;
   s["squares_not_covered_once"] = x.squares_not_covered_once;
+  s["squares_overlapping"] = x.squares_overlapping;
   s["boundary_edges"] = x.boundary_edges;
   s["holes"] = x.holes;
   s["non_manifold_edges"] = x.non_manifold_edges;

@@ -46,7 +46,7 @@ struct Square {
 
 struct Squares {
   std::vector<Square> quads;
-  int touching_flips = 0, wrapped = 0, not_covered_once = 0;
+  int touching_flips = 0, wrapped = 0, not_covered_once = 0, overlapping = 0;
 };
 
 // Every unit square, flooded once: started from each face of positive UV area at each
@@ -80,8 +80,41 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   return out;
 }
 
-// One vertex per surface point, one row of UV per (vertex, integer UV) pair; a square found
-// twice (its centre on an edge) is kept once.
+std::uint64_t directed_edge(int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); }
+
+// Drops the squares that share a directed edge with another square (both run along it the
+// same way: they overlap, as next to a fold of the map, where the surface is covered twice
+// by triangles that are not flipped) and counts them in `overlapping`. A square found twice
+// (its centre on an edge, so started twice) is kept once.
+void drop_overlapping_squares(Squares& squares) {
+  std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> id_of;
+  std::vector<std::array<int, 4>> ids;
+  std::set<std::array<int, 4>> seen;
+  std::vector<Square> unique;
+  for (const Square& s : squares.quads) {
+    std::array<int, 4> q{};
+    for (int k = 0; k < 4; ++k) q[k] = id_of.emplace(s.corners[k].key, static_cast<int>(id_of.size())).first->second;
+    std::array<int, 4> canonical = q;
+    std::rotate(canonical.begin(), std::min_element(canonical.begin(), canonical.end()), canonical.end());
+    if (!seen.insert(canonical).second) continue;
+    unique.push_back(s);
+    ids.push_back(q);
+  }
+  std::unordered_map<std::uint64_t, int> uses;
+  for (const auto& q : ids)
+    for (int k = 0; k < 4; ++k) ++uses[directed_edge(q[k], q[(k + 1) % 4])];
+  squares.quads.clear();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    bool overlaps = false;
+    for (int k = 0; k < 4; ++k) overlaps = overlaps || uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])] > 1;
+    if (overlaps)
+      ++squares.overlapping;
+    else
+      squares.quads.push_back(unique[i]);
+  }
+}
+
+// One vertex per surface point, one row of UV per (vertex, integer UV) pair.
 QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
   QuadMesh q;
   std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> vertex_of, uv_of;
@@ -89,7 +122,6 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
   std::vector<int> faces;
   std::vector<Eigen::Vector2d> uvs;
   std::vector<std::array<int, 4>> quads, quad_uvs;
-  std::set<std::array<int, 4>> kept;
   for (const Square& s : squares) {
     std::array<int, 4> ids{}, uv_ids{};
     for (int k = 0; k < 4; ++k) {
@@ -108,9 +140,6 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
       if (uv_added) uvs.push_back(c.uv);
       uv_ids[k] = jt->second;
     }
-    std::array<int, 4> canonical = ids;
-    std::rotate(canonical.begin(), std::min_element(canonical.begin(), canonical.end()), canonical.end());
-    if (!kept.insert(canonical).second) continue;
     quads.push_back(ids);
     quad_uvs.push_back(uv_ids);
   }
@@ -136,7 +165,7 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
 void check_topology(QuadExtraction& x) {
   const QuadMesh& q = x.mesh;
   std::unordered_map<std::uint64_t, int> directed;
-  const auto edge_key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  const auto edge_key = directed_edge;
   std::vector<int> valence(q.num_vertices(), 0);
   for (int i = 0; i < q.num_quads(); ++i)
     for (int k = 0; k < 4; ++k) {
@@ -191,11 +220,13 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
     throw InputError(prefix(source) + "the map covers " + std::to_string(std::llround(x.uv_area)) +
                      " unit squares (more than 5e7): are the UVs in grid units?");
 
-  const Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
+  Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
+  drop_overlapping_squares(squares);
   x.squares_touching_flips = squares.touching_flips;
   x.squares_wrapped = squares.wrapped;
   x.squares_not_covered_once = squares.not_covered_once;
-  x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once;
+  x.squares_overlapping = squares.overlapping;
+  x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping;
   x.mesh = assemble(map, squares.quads);
   check_topology(x);
   x.complete = x.dropped_squares == 0 && x.flipped_triangles == 0 && x.boundary_edges == 0 &&

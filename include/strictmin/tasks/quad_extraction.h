@@ -10,8 +10,9 @@
 // four corners. A corner is a surface point: a vertex, a point on an edge or inside a face,
 // so corners found from different squares are one vertex of the quad mesh.
 //
-// A square that touches a flipped (or zero-area) triangle, wraps onto itself, or is not
-// covered exactly once is left out: the quad mesh then has holes, and the extraction says
+// A square that touches a flipped (or zero-area) triangle, wraps onto itself, is not covered
+// exactly once, or overlaps another square (shares one of its edges run the same way) is
+// left out: the quad mesh then has holes, and the extraction says
 // so (complete = false). A map without flips whose squares are all covered gives a closed
 // quad mesh with the surface's Euler characteristic, one quad per unit of UV area, and a
 // vertex of valence 4 - k at each cone of index k/4.
@@ -53,6 +54,7 @@ struct QuadExtraction {
   int cones = 0;               // vertices of the map with a non-zero index
   int dropped_squares = 0;     // squares left out (the reasons below, each square counted once)
   int squares_touching_flips = 0, squares_wrapped = 0, squares_not_covered_once = 0;
+  int squares_overlapping = 0;  // sharing a quad edge with another square, run the same way (next to a fold)
   int edges = 0;               // of the quad mesh
   int boundary_edges = 0;      // quad edges with one quad (around the holes)
   int holes = 0;               // connected groups of boundary edges

@@ -1,0 +1,34 @@
+#include "quad_output.h"
+
+#include "report/summary.h"
+#include "strictmin/io/input_error.h"
+
+namespace strictmin::cli {
+
+std::string quad_extraction_phrase(const QuadExtraction& x) {
+  std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
+                     " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
+  if (x.complete) return line + ", complete";
+  return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
+         " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
+         std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +
+         " wrap onto themselves, " + std::to_string(x.squares_not_covered_once) + " are not covered once, " +
+         std::to_string(x.squares_overlapping) + " overlap others)";
+}
+
+nlohmann::json write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source, bool* complete) {
+  *complete = false;
+  QuadExtraction x;
+  try {
+    x = extract_quads(map, {}, source);
+  } catch (const InputError& e) {
+    return {{"status", "not-extracted"}, {"reason", e.what()}, {"file", ""}};
+  }
+  if (!path.empty()) write_quad_obj(path, x.mesh);
+  nlohmann::json s = quad_extraction_summary(x);
+  s["file"] = path;
+  *complete = x.complete;
+  return s;
+}
+
+}  // namespace strictmin::cli
