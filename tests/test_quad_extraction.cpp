@@ -1,0 +1,224 @@
+// Quad meshes from integer-grid maps (tasks/quad_extraction.h), against known answers: the
+// polycubes' grids (every quad a square of side h at integer multiples of h), the cones'
+// valences, Euler characteristics, and the holes a map's flips leave.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "expect_input_error.h"
+#include "strictmin/mesh/polycube.h"
+#include "strictmin/tasks/gparam.h"
+#include "strictmin/tasks/quad_extraction.h"
+#include "test_meshes.h"
+
+using namespace strictmin;
+using strictmin::test_support::expect_input_error;
+using strictmin::test_support::shared_closed_mesh;
+
+namespace {
+
+// An integer-grid map of a polycube at edge length h with its axis-aligned field (pinned
+// on face 0), as gparam makes it.
+GParamOutcome polycube_grid_map(const Mesh& mesh, double h) {
+  GParamOptions o;
+  o.field_options.pin_face = 0;
+  o.field_options.pin_direction = Eigen::Vector3d::UnitX();
+  o.solver.method = Method::L2;
+  o.edge_length = h;
+  o.integer_grid = true;
+  return global_parametrize(mesh, o);
+}
+
+// Every quad of side h, square (its diagonals sqrt(2) h), with its vertices at integer
+// multiples of h and its normal (from the diagonals) pointing away from `inside`.
+void expect_grid_of_squares(const QuadMesh& q, double h, const Eigen::Vector3d& inside) {
+  for (int i = 0; i < q.num_quads(); ++i) {
+    Eigen::Vector3d p[4];
+    for (int k = 0; k < 4; ++k) p[k] = q.V.row(q.Q(i, k)).transpose();
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR((p[(k + 1) % 4] - p[k]).norm(), h, 1e-9) << "quad " << i << " side " << k;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[k](c) / h, std::round(p[k](c) / h), 1e-9) << "quad " << i;
+    }
+    EXPECT_NEAR((p[2] - p[0]).norm(), std::sqrt(2.0) * h, 1e-9) << "quad " << i;
+    EXPECT_NEAR((p[3] - p[1]).norm(), std::sqrt(2.0) * h, 1e-9) << "quad " << i;
+    const Eigen::Vector3d normal = (p[2] - p[0]).cross(p[3] - p[1]);
+    const Eigen::Vector3d centre = (p[0] + p[1] + p[2] + p[3]) / 4;
+    EXPECT_GT(normal.dot(centre - inside), 0) << "quad " << i << " faces inward";
+  }
+}
+
+}  // namespace
+
+// The cube of side 5 at h = 1 and 0.5: its 6 (5/h)^2 grid squares, 6 (5/h - 1)^2 + 12 (5/h - 1)
+// + 8 vertices, the 8 corners of valence 3 (cones of index 1/4), Euler characteristic 2.
+TEST(QuadExtraction, TheCubeGivesItsGrid) {
+  for (double h : {1.0, 0.5}) {
+    const GParamOutcome g = polycube_grid_map(make_cube_surface(3), h);
+    ASSERT_TRUE(g.result.ok()) << g.result.message;
+    const QuadExtraction x = extract_quads(g.mapped);
+    const int n = static_cast<int>(std::lround(5 / h));
+    EXPECT_TRUE(x.complete) << "h = " << h;
+    EXPECT_EQ(x.mesh.num_quads(), 6 * n * n);
+    EXPECT_EQ(x.mesh.num_vertices(), 6 * (n - 1) * (n - 1) + 12 * (n - 1) + 8);
+    EXPECT_EQ(x.euler_characteristic, 2);
+    EXPECT_EQ(x.cones, 8);
+    EXPECT_EQ(x.valences.at(3), 8);
+    EXPECT_EQ(x.valences.at(4), x.mesh.num_vertices() - 8);
+    EXPECT_EQ(x.dropped_squares + x.boundary_edges + x.non_manifold_edges + x.flipped_triangles, 0);
+    EXPECT_NEAR(x.uv_area, 6.0 * n * n, 1e-9);
+    expect_grid_of_squares(x.mesh, h, Eigen::Vector3d(2.5, 2.5, 2.5));
+  }
+}
+
+// The frame of 8 unit cubes (genus 1) at h = 0.5: its area 32 in 128 squares, 8 convex
+// corners of valence 3 and 8 saddle corners of valence 5, Euler characteristic 0.
+TEST(QuadExtraction, TheFrameHasItsConvexAndSaddleCorners) {
+  const GParamOutcome g = polycube_grid_map(make_frame_surface(2), 0.5);
+  ASSERT_TRUE(g.result.ok()) << g.result.message;
+  const QuadExtraction x = extract_quads(g.mapped);
+  EXPECT_TRUE(x.complete);
+  EXPECT_EQ(x.mesh.num_quads(), 128);
+  EXPECT_EQ(x.euler_characteristic, 0);
+  EXPECT_EQ(x.surface_euler_characteristic, 0);
+  EXPECT_EQ(x.valences.at(3), 8);
+  EXPECT_EQ(x.valences.at(5), 8);
+  EXPECT_EQ(x.valences.size(), 3u);
+  // Each quad is a square of side 0.5 at multiples of 0.5 (normals checked in the cube test).
+  for (int i = 0; i < x.mesh.num_quads(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d a = x.mesh.V.row(x.mesh.Q(i, k)), b = x.mesh.V.row(x.mesh.Q(i, (k + 1) % 4));
+      EXPECT_NEAR((b - a).norm(), 0.5, 1e-9);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(2 * a(c), std::round(2 * a(c)), 1e-9);
+    }
+}
+
+// Relabelling the vertices, the faces and each face's corners gives the same quad mesh (the
+// same vertex positions, the same counts).
+TEST(QuadExtraction, RelabellingChangesNothing) {
+  const GParamOutcome g = polycube_grid_map(make_frame_surface(2), 0.5);
+  ASSERT_TRUE(g.result.ok());
+  const Mesh& m = g.mapped;
+  std::mt19937 rng(7);
+  std::vector<int> vertex_order(m.num_vertices()), face_order(m.num_elements());
+  std::iota(vertex_order.begin(), vertex_order.end(), 0);
+  std::iota(face_order.begin(), face_order.end(), 0);
+  std::shuffle(vertex_order.begin(), vertex_order.end(), rng);
+  std::shuffle(face_order.begin(), face_order.end(), rng);
+  Mesh r = m;
+  for (int v = 0; v < m.num_vertices(); ++v) r.V.row(vertex_order[v]) = m.V.row(v);
+  for (int f = 0; f < m.num_elements(); ++f) {
+    const int shift = f % 3;
+    for (int i = 0; i < 3; ++i) {
+      r.F(face_order[f], i) = vertex_order[m.F(f, (i + shift) % 3)];
+      r.FUV(face_order[f], i) = m.FUV(f, (i + shift) % 3);
+    }
+  }
+  const QuadExtraction a = extract_quads(m), b = extract_quads(r);
+  ASSERT_TRUE(a.complete && b.complete);
+  ASSERT_EQ(a.mesh.num_vertices(), b.mesh.num_vertices());
+  EXPECT_EQ(a.mesh.num_quads(), b.mesh.num_quads());
+  EXPECT_EQ(a.valences, b.valences);
+  const auto sorted_rows = [](const Eigen::MatrixXd& V) {
+    std::vector<std::array<double, 3>> rows;
+    for (int i = 0; i < V.rows(); ++i)
+      rows.push_back({std::round(V(i, 0) * 1e6), std::round(V(i, 1) * 1e6), std::round(V(i, 2) * 1e6)});
+    std::sort(rows.begin(), rows.end());
+    return rows;
+  };
+  EXPECT_EQ(sorted_rows(a.mesh.V), sorted_rows(b.mesh.V));
+}
+
+// A real surface of genus 4 on a fine grid (flip-free with the L-infinity guide): complete,
+// Euler characteristic -6, one vertex of valence 3 per cone of index 1/4 and of valence 5
+// per cone of index -1/4, one quad per unit of UV area, sides near h.
+TEST(QuadExtraction, FertilityOnAFineGridIsComplete) {
+  const Mesh* m = shared_closed_mesh("fertility");
+  if (!m) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  GParamOptions o;
+  o.quads = 10000;
+  o.integer_grid = true;
+  o.grid_guide = GParamOptions::GridGuide::Linf;
+  o.solver.method = Method::Linf;
+  const GParamOutcome g = global_parametrize(*m, o);
+  ASSERT_EQ(g.measured.stats.flipped, 0);
+  const QuadExtraction x = extract_quads(g.mapped);
+  EXPECT_TRUE(x.complete);
+  EXPECT_EQ(x.euler_characteristic, -6);
+  int convex = 0, saddle = 0;
+  for (const Singularity& s : g.singular) (s.quarters == 1 ? convex : saddle) += 1;
+  EXPECT_EQ(x.valences.at(3), convex);
+  EXPECT_EQ(x.valences.at(5), saddle);
+  EXPECT_EQ(x.mesh.num_quads(), std::lround(x.uv_area));
+  std::vector<double> sides;
+  for (int i = 0; i < x.mesh.num_quads(); ++i)
+    for (int k = 0; k < 4; ++k)
+      sides.push_back((x.mesh.V.row(x.mesh.Q(i, k)) - x.mesh.V.row(x.mesh.Q(i, (k + 1) % 4))).norm() / g.edge_length);
+  std::nth_element(sides.begin(), sides.begin() + sides.size() / 2, sides.end());
+  EXPECT_NEAR(sides[sides.size() / 2], 1.0, 0.1);
+}
+
+// A coarse grid whose map flips triangles: the squares next to them are left out, and what
+// is left is a manifold quad mesh with holes.
+TEST(QuadExtraction, FlipsLeaveHolesInAManifoldQuadMesh) {
+  const Mesh* m = shared_closed_mesh("cow");
+  if (!m) GTEST_SKIP() << "../shared/data/closed/cow.obj not available";
+  GParamOptions o;
+  o.integer_grid = true;
+  o.solver.method = Method::L2;
+  const GParamOutcome g = global_parametrize(*m, o);
+  ASSERT_GT(g.measured.stats.flipped, 0);
+  const QuadExtraction x = extract_quads(g.mapped);
+  EXPECT_FALSE(x.complete);
+  EXPECT_EQ(x.flipped_triangles, g.measured.stats.flipped);
+  EXPECT_GT(x.squares_touching_flips, 0);
+  EXPECT_GT(x.holes, 0);
+  EXPECT_GT(x.boundary_edges, 0);
+  EXPECT_EQ(x.non_manifold_edges, 0);
+  // Squares away from the folds are all there: those kept and those left out together make
+  // up the UV area (to within the folds' double cover).
+  EXPECT_LE(x.mesh.num_quads() + x.dropped_squares, x.uv_area + 1e-6);
+  EXPECT_GE(x.mesh.num_quads() + x.dropped_squares, 0.98 * x.uv_area);
+}
+
+TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
+  const Mesh cube = make_cube_surface(3);
+  expect_input_error([&] { extract_quads(cube, {}, "cube.obj"); }, {"cube.obj", "no per-corner UVs"});
+
+  // A seamless map at h = 0.7 without rounding: the seams' translations are not integers.
+  GParamOptions o;
+  o.field_options.pin_face = 0;
+  o.field_options.pin_direction = Eigen::Vector3d::UnitX();
+  o.edge_length = 0.7;
+  o.solver.method = Method::L2;
+  const GParamOutcome free_map = global_parametrize(cube, o);
+  expect_input_error([&] { extract_quads(free_map.mapped, {}, "free.obj"); },
+                     {"free.obj", "translation", "not a pair of integers"});
+
+  // The integer-grid map moved by (1/2, 1/2): the translations stay integers (I - R moves
+  // (1/2, 1/2) to an integer vector for every quarter turn R), the cones go half-way.
+  GParamOutcome grid = polycube_grid_map(cube, 1.0);
+  grid.mapped.UV.rowwise() += Eigen::RowVector2d(0.5, 0.5);
+  expect_input_error([&] { extract_quads(grid.mapped, {}, "half.obj"); },
+                     {"half.obj", "cone of index 1/4", "not at an integer point"});
+
+  // Two sides of an edge that no quarter turn relates.
+  Mesh torn = polycube_grid_map(cube, 1.0).mapped;
+  torn.UV.conservativeResize(torn.UV.rows() + 1, 2);
+  torn.UV.row(torn.UV.rows() - 1) << 100.25, -3;
+  torn.FUV(0, 0) = static_cast<int>(torn.UV.rows() - 1);
+  expect_input_error([&] { extract_quads(torn, {}, "torn.obj"); }, {"torn.obj", "edge", "not seamless"});
+
+  // A surface with a boundary (one face removed).
+  Mesh open = polycube_grid_map(cube, 1.0).mapped;
+  open.F = open.F.bottomRows(open.F.rows() - 1).eval();
+  open.FUV = open.FUV.bottomRows(open.FUV.rows() - 1).eval();
+  expect_input_error([&] { extract_quads(open, {}, "open.obj"); }, {"open.obj", "boundary loop", "closed surfaces"});
+
+  QuadExtractionOptions bad;
+  bad.tolerance = 0;
+  expect_input_error([&] { extract_quads(grid.mapped, bad); }, {"tolerance"});
+}
