@@ -96,6 +96,44 @@ TEST(QuadExtraction, TheFrameHasItsConvexAndSaddleCorners) {
     }
 }
 
+// Vertices a hair (1e-5, ten times the tolerance) from grid points: the grid point then lies
+// in a face that meets its squares only in slivers thinner than the tolerance, which the
+// squares' floods do not enter; each square still finds it as its corner (one vertex), and
+// the quad mesh is the cube's.
+TEST(QuadExtraction, VerticesAHairFromTheGridChangeNothing) {
+  const GParamOutcome g = polycube_grid_map(make_cube_surface(3), 1.0);
+  Mesh m = g.mapped;
+  std::vector<char> on_cut(m.num_vertices(), 0);  // the seams' vertices (the cones among them)
+  for (int e = 0; e < g.graph.num_edges(); ++e)
+    if (g.cut.cut[e]) on_cut[g.graph.edges(e, 0)] = on_cut[g.graph.edges(e, 1)] = 1;
+  const auto flip_free = [&] {
+    for (int f = 0; f < m.num_elements(); ++f) {
+      const Eigen::Vector2d a = m.UV.row(m.FUV(f, 0)), b = m.UV.row(m.FUV(f, 1)), c = m.UV.row(m.FUV(f, 2));
+      const Eigen::Vector2d u = b - a, w = c - a;
+      if (!(u.x() * w.y() - u.y() * w.x() > 0)) return false;
+    }
+    return true;
+  };
+  int moved = 0;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    if (on_cut[v]) continue;
+    const int w = m.FUV(g.graph.fan_faces[g.graph.fan_start[v]], g.graph.fan_corners[g.graph.fan_start[v]]);
+    const Eigen::RowVector2d before = m.UV.row(w);
+    m.UV.row(w) << std::round(before.x()) + 1e-5, std::round(before.y()) - 7e-6;
+    if (flip_free())
+      ++moved;
+    else
+      m.UV.row(w) = before;
+  }
+  ASSERT_GT(moved, 10);
+  const QuadExtraction x = extract_quads(m);
+  EXPECT_TRUE(x.complete);
+  EXPECT_EQ(x.mesh.num_quads(), 150);
+  EXPECT_EQ(x.mesh.num_vertices(), 152);
+  EXPECT_EQ(x.valences.at(3), 8);
+  EXPECT_EQ(x.valences.at(4), 144);
+}
+
 // Relabelling the vertices, the faces and each face's corners gives the same quad mesh (the
 // same vertex positions, the same counts).
 TEST(QuadExtraction, RelabellingChangesNothing) {

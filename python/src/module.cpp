@@ -31,4 +31,5 @@ PYBIND11_MODULE(_strictmin, m) {
   strictmin::python::bind_io(m);
   strictmin::python::bind_tasks(m);
   strictmin::python::bind_measures(m);
+  strictmin::python::bind_quads(m);
 }

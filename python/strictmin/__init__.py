@@ -21,7 +21,7 @@ from ._result import Result
 
 __version__ = _strictmin.__version__
 
-__all__ = ["blas_kernels", "read_mesh", "write_mesh", "deform", "param", "gparam", "interp", "distortion", "compare", "Result",
+__all__ = ["blas_kernels", "read_mesh", "write_mesh", "deform", "param", "gparam", "interp", "distortion", "compare", "quads", "Result",
            "Comparison"]
 
 def blas_kernels():
@@ -377,6 +377,25 @@ def distortion(V, F, U, measure="arap"):
     F = _faces(F)
     U = _vertices(U, "U")
     return np.ascontiguousarray(_strictmin.distortion(V, F, U, _text(measure, "measure"))["distortion"])
+
+
+def quads(V, F, uv, fuv, tolerance=1e-6):
+    """The quad mesh of an integer-grid map (gparam with integer_grid=True: its ``uv`` and
+    ``fuv``; the command line's ``strictmin quads``; docs/gparam.md, "Quad meshes"): one quad
+    per unit square of UV. Returns a dict: ``V`` (#vertices by 3, on the surface), ``Q``
+    (#quads by 4, counter-clockwise), ``uv`` / ``quv`` (each quad's integer corners),
+    ``vertex_face`` and ``vertex_barycentric`` (where each vertex lies on (V, F)),
+    ``complete`` (every square a quad, closed, the surface's Euler characteristic) and
+    ``summary`` (the command line's keys: holes, dropped_squares, valences, ...). Squares next
+    to flipped triangles are left out as holes (complete is then False). tolerance: UV units,
+    how far a seam translation or a cone may be from the grid. ValueError when the map is not
+    an integer-grid map."""
+    V = _vertices(V)
+    F = _faces(F)
+    uv = _vertices(uv, "uv")
+    fuv = _indices(fuv, "fuv")
+    tolerance = _real_number(tolerance, "tolerance")
+    return _strictmin.quads(V, F, uv, fuv, tolerance)
 
 
 def element_weights(V, F):

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace strictmin {
 namespace {
@@ -74,6 +75,14 @@ Eigen::Vector3d barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen
   return sum > 0 ? Eigen::Vector3d(l / sum) : Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3);
 }
 
+// The distance from p to the segment a-b.
+double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d d = b - a;
+  const double length2 = d.squaredNorm();
+  const double s = length2 > 0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+  return (a + s * d - p).norm();
+}
+
 SurfacePointKey key_at(const Eigen::Vector2d& p, int kind, int element) {
   return {kind, element, static_cast<std::int64_t>(std::llround(p.x())), static_cast<std::int64_t>(std::llround(p.y()))};
 }
@@ -108,6 +117,8 @@ SquareFlood SquareFlooder::flood(int face, const Eigen::Vector2d& centre) {
     find_corners(g, here, centre, found, out);
     for (int side = 0; side < 3; ++side) flips = !cross_to_neighbour(g, side, here, queue) || flips;
   }
+  for (int k = 0; k < 4; ++k)
+    if (!found[k]) find_corner_nearby(k, queue, centre, found, out);
   const bool corners_distinct = std::all_of(found.begin(), found.end(), [](bool b) { return b; }) &&
                                 [&] {
                                   for (int i = 0; i < 4; ++i)
@@ -130,20 +141,29 @@ bool SquareFlooder::cross_to_neighbour(int face, int side, const Visit& here, st
   const auto t = face_uvs(map_, face);
   if (!crosses_open_square(t[side], t[(side + 1) % 3], here.centre, tolerance_)) return true;
   const int e = graph_.face_edges(face, side), h = graph_.neighbour(face, side);
-  const UvTransition& T = transitions_[e];
-  if (!T.known) return false;
-  const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == side;
-  const Eigen::Matrix2d R = T.rotation();
-  const Eigen::Vector2d centre = from_face0 ? T.to_face1(here.centre) : T.to_face0(here.centre);
-  const Eigen::Matrix2d frame = from_face0 ? Eigen::Matrix2d(R.transpose() * here.frame) : Eigen::Matrix2d(R * here.frame);
+  if (!transitions_[e].known) return false;
+  const Visit carried = carried_across(face, side, here);
   Visit& there = visits_[h];
   if (there.stamp == stamp_) {
-    if ((there.centre - centre).norm() > 1e-6 || (there.frame - frame).norm() > 1e-9) wraps_ = true;
+    if ((there.centre - carried.centre).norm() > 1e-6 || (there.frame - carried.frame).norm() > 1e-9) wraps_ = true;
     return true;
   }
-  there = {stamp_, centre, frame};
+  there = carried;
   queue.push_back(h);
   return true;
+}
+
+// The square as seen from the face across side `side` of `face` (its transition applied).
+SquareFlooder::Visit SquareFlooder::carried_across(int face, int side, const Visit& here) const {
+  const int e = graph_.face_edges(face, side);
+  const UvTransition& T = transitions_[e];
+  const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == side;
+  const Eigen::Matrix2d R = T.rotation();
+  Visit v;
+  v.stamp = stamp_;
+  v.centre = from_face0 ? T.to_face1(here.centre) : T.to_face0(here.centre);
+  v.frame = from_face0 ? Eigen::Matrix2d(R.transpose() * here.frame) : Eigen::Matrix2d(R * here.frame);
+  return v;
 }
 
 // The square's corners (integer points) that lie in the closed face, each with its key.
@@ -152,8 +172,7 @@ void SquareFlooder::find_corners(int face, const Visit& here, const Eigen::Vecto
   const auto t = face_uvs(map_, face);
   for (int k = 0; k < 4; ++k) {
     if (found[k]) continue;
-    const Eigen::Vector2d q = here.centre + here.frame * kCornerOffsets[k];
-    const Eigen::Vector2d p(std::round(q.x()), std::round(q.y()));
+    const Eigen::Vector2d p = corner_point(here, k);
     if (!uv_face_contains(map_, face, p, tolerance_)) continue;
     SquareCorner& c = out.corners[k];
     c.face = face;
@@ -179,6 +198,40 @@ void SquareFlooder::find_corners(int face, const Visit& here, const Eigen::Vecto
     const int e = graph_.face_edges(face, on_side);
     const bool face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == on_side;
     c.key = key_at(face0 || !transitions_[e].known ? p : transitions_[e].to_face0(p), SurfacePointKey::Edge, e);
+  }
+}
+
+Eigen::Vector2d SquareFlooder::corner_point(const Visit& here, int k) {
+  const Eigen::Vector2d q = here.centre + here.frame * kCornerOffsets[k];
+  return {std::round(q.x()), std::round(q.y())};
+}
+
+// A corner that no face of the square holds: it lies (by less than the tolerance of the
+// edges' crossings) in a face that touches the square only in a sliver, as next to a vertex a
+// hair from the grid point. Searched from the square's faces across the edges that pass
+// within half a unit of the corner, each seam's transition applied, up to kNearbyFaces faces.
+void SquareFlooder::find_corner_nearby(int k, const std::vector<int>& square_faces, const Eigen::Vector2d& start_centre,
+                                       std::array<bool, 4>& found, SquareFlood& out) {
+  constexpr size_t kNearbyFaces = 1000;
+  std::unordered_map<int, Visit> seen;
+  std::vector<int> queue;
+  for (int f : square_faces) seen.emplace(f, visits_[f]), queue.push_back(f);
+  for (size_t next = 0; next < queue.size() && queue.size() < kNearbyFaces && !found[k]; ++next) {
+    const int g = queue[next];
+    const Visit here = seen.at(g);
+    const auto t = face_uvs(map_, g);
+    const Eigen::Vector2d p = corner_point(here, k);
+    for (int side = 0; side < 3; ++side) {
+      const int e = graph_.face_edges(g, side), h = graph_.neighbour(g, side);
+      if (!transitions_[e].known || seen.count(h) || segment_distance(t[side], t[(side + 1) % 3], p) > 0.5) continue;
+      seen.emplace(h, carried_across(g, side, here));
+      queue.push_back(h);
+    }
+    std::array<bool, 4> others_done;  // find_corners looks for corner k alone
+    others_done.fill(true);
+    others_done[k] = false;
+    find_corners(g, here, start_centre, others_done, out);
+    found[k] = others_done[k];
   }
 }
 

@@ -65,6 +65,10 @@ class SquareFlooder {
     Eigen::Matrix2d frame;
   };
   bool cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue);
+  Visit carried_across(int face, int side, const Visit& here) const;
+  static Eigen::Vector2d corner_point(const Visit& here, int k);
+  void find_corner_nearby(int k, const std::vector<int>& square_faces, const Eigen::Vector2d& start_centre,
+                          std::array<bool, 4>& found, SquareFlood& out);
   void find_corners(int face, const Visit& here, const Eigen::Vector2d& start_centre, std::array<bool, 4>& found,
                     SquareFlood& out) const;
 
