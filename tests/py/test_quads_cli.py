@@ -1,0 +1,157 @@
+"""End-to-end tests of quad extraction (docs/gparam.md, "Quad meshes"): `strictmin quads`
+and `gparam --quad-mesh` on the cube's integer-grid map (its exact grid, exit 0), a map
+with flipped triangles (holes, exit 2, the quads kept written), and bad input (exit 1, a
+message naming the problem, no output file). Run by ctest with STRICTMIN_CLI set."""
+import json
+import os
+import tempfile
+import unittest
+
+from cli_support import run
+from test_gparam_cli import cube_obj
+
+
+def read_obj(path):
+    V, faces, vts = [], [], []
+    with open(path) as f:
+        for line in f:
+            p = line.split()
+            if p and p[0] == "v":
+                V.append([float(x) for x in p[1:4]])
+            elif p and p[0] == "vt":
+                vts.append([float(x) for x in p[1:3]])
+            elif p and p[0] == "f":
+                faces.append([[int(i) - 1 for i in c.split("/")] for c in p[1:]])
+    return V, vts, faces
+
+
+class Quads(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        lines, _ = cube_obj()  # side 2, 3 by 3 cells a side
+        self.cube = self.write("cube.obj", "\n".join(lines) + "\n")
+        # The cube's edge-aligned field (as in test_gparam_cli's integer-grid test).
+        verts = [[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")]
+        field = []
+        for l in lines:
+            if l.startswith("f "):
+                corners = [verts[int(i) - 1] for i in l.split()[1:]]
+                field.append("0 1 0" if all(abs(c[0] - corners[0][0]) < 1e-12 for c in corners) else "1 0 0")
+        self.field = self.write("edges.txt", "\n".join(field) + "\n")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        p = os.path.join(self.dir, name)
+        with open(p, "w") as f:
+            f.write(text)
+        return p
+
+    def out(self, name):
+        return os.path.join(self.dir, name)
+
+    def grid_map(self, *extra, code=0):
+        summary = self.out("gparam.json")
+        run("gparam", self.cube, "-o", self.out("map.obj"), "--field", self.field, "--edge-length", "0.5",
+            "--integer-grid", "--summary", summary, "--quiet", *extra, check_code=code)
+        with open(summary) as f:
+            return json.load(f)
+
+    def quads(self, map_path, code):
+        summary = self.out("quads.json")
+        p = run("quads", map_path, "-o", self.out("quads.obj"), "--summary", summary, check_code=code)
+        with open(summary) as f:
+            return json.load(f), p
+
+    def test_the_cube_gives_its_grid(self):
+        # Side 2 at h = 0.5: 6 x 16 quads, 6 x 9 + 12 x 3 + 8 vertices, the 8 corners of valence 3.
+        s = self.grid_map("--quad-mesh", self.out("gq.obj"))
+        q = s["quad_mesh"]
+        self.assertEqual(q["status"], "complete")
+        self.assertEqual(q["file"], self.out("gq.obj"))
+        self.assertEqual((q["quads"], q["vertices"], q["euler_characteristic"]), (96, 98, 2))
+        self.assertEqual(q["valences"], {"3": 8, "4": 90})
+        self.assertEqual(q["holes"] + q["dropped_squares"] + q["boundary_edges"], 0)
+        V, vts, faces = read_obj(self.out("gq.obj"))
+        self.assertEqual((len(V), len(faces)), (98, 96))
+        for face in faces:
+            self.assertEqual(len(face), 4)
+            for v, t in face:
+                self.assertTrue(all(abs(2 * x - round(2 * x)) < 1e-9 for x in V[v]), V[v])
+                self.assertTrue(all(x == round(x) for x in vts[t]), vts[t])
+        # strictmin quads on the written map: the same quad mesh, file for file.
+        s2, p = self.quads(self.out("map.obj"), 0)
+        self.assertEqual(s2["task"], "quads")
+        self.assertEqual(s2["input"], self.out("map.obj"))
+        self.assertEqual((s2["status"], s2["quads"], s2["vertices"]), ("complete", 96, 98))
+        self.assertIn("96 quads", p.stderr)
+        with open(self.out("gq.obj")) as a, open(self.out("quads.obj")) as b:
+            self.assertEqual(a.read(), b.read())
+
+    def test_flips_leave_holes_and_exit_2(self):
+        self.grid_map()
+        # Move one vertex away from the seams by more than a grid unit: its triangles fold over,
+        # and the map stays seamless and on the grid.
+        with open(self.out("map.obj")) as f:
+            lines = f.read().split("\n")
+        vt_lines = [i for i, l in enumerate(lines) if l.startswith("vt ")]
+        uses = {}
+        for l in lines:
+            if l.startswith("f "):
+                for c in l.split()[1:]:
+                    v, t = (int(x) for x in c.split("/"))
+                    uses.setdefault(v, set()).add(t)
+        neighbours = {}
+        for l in lines:
+            if l.startswith("f "):
+                vs = [int(c.split("/")[0]) for c in l.split()[1:]]
+                for a in vs:
+                    neighbours.setdefault(a, set()).update(vs)
+        # No seam reaches it: it and its neighbours have one vt each (a cone at a seam's end has one too).
+        v = next(v for v in sorted(uses) if all(len(uses[x]) == 1 for x in neighbours[v]))
+        t = next(iter(uses[v]))
+        u, w = (float(x) for x in lines[vt_lines[t - 1]].split()[1:])
+        lines[vt_lines[t - 1]] = f"vt {u + 1.7} {w + 0.9}"
+        folded = self.write("folded.obj", "\n".join(lines))
+        s, p = self.quads(folded, 2)
+        self.assertEqual(s["status"], "holes")
+        self.assertGreater(s["flipped_triangles"], 0)
+        self.assertGreater(s["squares_touching_flips"], 0)
+        self.assertGreaterEqual(s["holes"], 1)
+        self.assertEqual(s["non_manifold_edges"], 0)
+        self.assertIn("hole", p.stderr)
+        V, _, faces = read_obj(self.out("quads.obj"))
+        self.assertEqual(len(faces), s["quads"])
+        self.assertLess(s["quads"], 96)
+
+    def assert_refused(self, args, words, outputs):
+        p = run(*args, check_code=1)
+        for w in words:
+            self.assertIn(w, p.stderr)
+        for o in outputs:
+            self.assertFalse(os.path.exists(o), o)
+
+    def test_bad_input(self):
+        q, s = self.out("q.obj"), self.out("s.json")
+        # No vt.
+        self.assert_refused(["quads", self.cube, "-o", q, "--summary", s], ["cube.obj", "no per-corner UVs"], [q, s])
+        # A seamless map off the grid (no --integer-grid, h = 0.7).
+        run("gparam", self.cube, "-o", self.out("free.obj"), "--field", self.field, "--edge-length", "0.7",
+            "--quiet", check_code=0)
+        self.assert_refused(["quads", self.out("free.obj"), "-o", q, "--summary", s],
+                            ["free.obj", "not a pair of integers"], [q, s])
+        # Only OBJ is written; gparam's quads need the integer grid.
+        self.grid_map()
+        self.assert_refused(["quads", self.out("map.obj"), "-o", self.out("q.off")], ["q.off", ".obj only"],
+                            [self.out("q.off")])
+        g = self.out("g.obj")
+        self.assert_refused(["gparam", self.cube, "-o", g, "--quad-mesh", q], ["--quad-mesh", "--integer-grid"], [g, q])
+        self.assert_refused(["gparam", self.cube, "-o", g, "--integer-grid", "--quad-mesh", self.out("q.ply")],
+                            ["q.ply", ".obj only"], [g, self.out("q.ply")])
+        self.assert_refused(["quads", self.out("map.obj"), "--tolerance", "0.5"], ["--tolerance"], [])
+
+
+if __name__ == "__main__":
+    unittest.main()
