@@ -124,12 +124,15 @@ int run_gparam(const GParamArgs& a) {
   const std::string written = write_map(a.output, g.mapped, g.result.status);
   nlohmann::json s = gparam_summary(mesh, o, g, a.field, {a.mesh, written, a.out.distortion});
   bool quads_complete = true;
+  QuadOutput quads;
   if (!a.quad_mesh.empty()) {
     progress(a.out, "gparam: quad extraction");
-    s["quad_mesh"] = status_usable(g.result.status)
-                         ? write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, &quads_complete)
-                         : nlohmann::json{{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
-    quads_complete = quads_complete && status_usable(g.result.status);
+    if (status_usable(g.result.status))
+      quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh);
+    else
+      quads.summary = {{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
+    s["quad_mesh"] = quads.summary;
+    quads_complete = quads.complete;
     progress(a.out, "gparam: quad mesh " + s["quad_mesh"].value("status", std::string()) + ", " +
                         std::to_string(s["quad_mesh"].value("quads", 0)) + " quads" +
                         (s["quad_mesh"].contains("reason") ? ": " + s["quad_mesh"]["reason"].get<std::string>() : ""));
@@ -137,7 +140,7 @@ int run_gparam(const GParamArgs& a) {
   s["time_s"] = seconds_since(t0);
   write_outputs(a.out, s, g.measured.distortion);
   if (!a.report.dir.empty())
-    progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g)));
+    progress(a.out, "report: " + file_url(write_gparam_report(a.report, s, a.mesh, mesh, g, quads.mesh ? &*quads.mesh : nullptr)));
   progress(a.out, "gparam: max distortion " + std::to_string(g.measured.stats.max) + ", L2 " +
                       std::to_string(g.measured.stats.l2) + ", " + std::to_string(g.measured.stats.flipped) +
                       " flipped, seam error " + shown_number(g.seam_error) +

@@ -5,6 +5,7 @@
 #include "common.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/report/html_report.h"
+#include "strictmin/report/quad_view.h"
 
 namespace strictmin::cli {
 
@@ -49,7 +50,7 @@ std::vector<std::string> write_gparam_pictures(const std::string& dir, const std
 }
 
 std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summary, const std::string& input,
-                                const Mesh& mesh, const GParamOutcome& g) {
+                                const Mesh& mesh, const GParamOutcome& g, const QuadMesh* quads) {
   open_report_folder(a.dir);
   const std::string method = summary.value("method", std::string("l2"));
   MethodRun run = method_run(method, g);
@@ -72,6 +73,15 @@ std::string write_gparam_report(const ReportArgs& a, const nlohmann::json& summa
   run.view_name = "view";
   run.links.emplace_back("surface with seams and singularities", pictures[0]);
   run.links.emplace_back("unit grid through the map", pictures[1]);
+  if (quads) {
+    RasterOptions r;
+    r.width = 560;
+    r.height = 420;
+    r.frame_points = mesh.V;  // framed as the surface's pictures
+    const std::string name = method + "_quads.png";
+    write_png((std::filesystem::path(a.dir) / name).string(), render_quad_mesh(*quads, r));
+    run.links.emplace_back("quad mesh (white dots: valence 3 or less, black: 5 or more)", name);
+  }
   run.links.emplace_back("summary.json", "summary.json");
   in.runs.push_back(std::move(run));
   return write_report_folder(a, summary, in.title, {in});

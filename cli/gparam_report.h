@@ -10,6 +10,7 @@
 #include "report_output.h"
 #include "strictmin/report/gparam_view.h"
 #include "strictmin/tasks/gparam.h"
+#include "strictmin/tasks/quad_extraction.h"
 
 namespace strictmin::cli {
 
@@ -22,8 +23,8 @@ MethodRun method_run(const std::string& method, const GParamOutcome& g);
 std::vector<std::string> write_gparam_pictures(const std::string& dir, const std::string& name, const Mesh& mesh,
                                                const GParamOutcome& g, double scale);
 
-// Returns the path of index.html.
+// Returns the path of index.html. quads (--quad-mesh, when extracted): also DIR/NAME_quads.png.
 std::string write_gparam_report(const ReportArgs& args, const nlohmann::json& summary, const std::string& input,
-                                const Mesh& mesh, const GParamOutcome& g);
+                                const Mesh& mesh, const GParamOutcome& g, const QuadMesh* quads = nullptr);
 
 }  // namespace strictmin::cli

@@ -16,19 +16,21 @@ std::string quad_extraction_phrase(const QuadExtraction& x) {
          std::to_string(x.squares_overlapping) + " overlap others)";
 }
 
-nlohmann::json write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source, bool* complete) {
-  *complete = false;
+QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source) {
+  QuadOutput out;
   QuadExtraction x;
   try {
     x = extract_quads(map, {}, source);
   } catch (const InputError& e) {
-    return {{"status", "not-extracted"}, {"reason", e.what()}, {"file", ""}};
+    out.summary = {{"status", "not-extracted"}, {"reason", e.what()}, {"file", ""}};
+    return out;
   }
   if (!path.empty()) write_quad_obj(path, x.mesh);
-  nlohmann::json s = quad_extraction_summary(x);
-  s["file"] = path;
-  *complete = x.complete;
-  return s;
+  out.summary = quad_extraction_summary(x);
+  out.summary["file"] = path;
+  out.complete = x.complete;
+  out.mesh = std::move(x.mesh);
+  return out;
 }
 
 }  // namespace strictmin::cli

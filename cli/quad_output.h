@@ -2,6 +2,7 @@
 // The quad mesh of an integer-grid map as the command line reports it (strictmin quads,
 // gparam --quad-mesh).
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "strictmin/tasks/quad_extraction.h"
@@ -11,10 +12,16 @@ namespace strictmin::cli {
 // "N quads, M vertices, Euler characteristic X, complete" or the holes and why.
 std::string quad_extraction_phrase(const QuadExtraction& x);
 
+struct QuadOutput {
+  nlohmann::json summary;        // the extraction's keys with `file`
+  std::optional<QuadMesh> mesh;  // none when not extracted
+  bool complete = false;
+};
+
 // Extracts the quads of `map` and writes them to `path` (.obj; none when empty). The
-// extraction's summary with `file` (the path, "" when none was written); when the map is
-// not an integer-grid map (an InputError from the extraction), {"status": "not-extracted",
-// "reason": ...} and nothing is written. *complete: whether the quad mesh is complete.
-nlohmann::json write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source, bool* complete);
+// summary has the extraction's keys and `file` (the path, "" when none was written); when
+// the map is not an integer-grid map (an InputError from the extraction) it is
+// {"status": "not-extracted", "reason": ..., "file": ""} and nothing is written.
+QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source);
 
 }  // namespace strictmin::cli

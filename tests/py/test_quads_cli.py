@@ -90,6 +90,17 @@ class Quads(unittest.TestCase):
         with open(self.out("gq.obj")) as a, open(self.out("quads.obj")) as b:
             self.assertEqual(a.read(), b.read())
 
+    def test_report_draws_the_quads(self):
+        report = self.out("report")
+        self.grid_map("--quad-mesh", self.out("gq.obj"), "--report", report)
+        self.assertTrue(os.path.getsize(os.path.join(report, "l2_quads.png")) > 1000)
+        with open(os.path.join(report, "index.html")) as f:
+            self.assertIn("l2_quads.png", f.read())
+        # Without --quad-mesh there is no quad picture.
+        report2 = self.out("report2")
+        self.grid_map("--report", report2)
+        self.assertFalse(os.path.exists(os.path.join(report2, "l2_quads.png")))
+
     def test_flips_leave_holes_and_exit_2(self):
         self.grid_map()
         # Move one vertex away from the seams by more than a grid unit: its triangles fold over,
