@@ -134,6 +134,41 @@ TEST(QuadExtraction, VerticesAHairFromTheGridChangeNothing) {
   EXPECT_EQ(x.valences.at(4), 144);
 }
 
+// Folds made at random (vertices away from the seams moved by up to 1.5 grid units): the
+// quads left are a manifold mesh of distinct corners, and a map with no flipped triangle
+// left is extracted completely.
+TEST(QuadExtraction, RandomFoldsLeaveAManifoldQuadMesh) {
+  const GParamOutcome g = polycube_grid_map(make_frame_surface(2), 0.5);
+  ASSERT_TRUE(g.result.ok());
+  std::vector<int> movable;  // wedges of vertices off the cut
+  std::vector<char> on_cut(g.mapped.num_vertices(), 0);
+  for (int e = 0; e < g.graph.num_edges(); ++e)
+    if (g.cut.cut[e]) on_cut[g.graph.edges(e, 0)] = on_cut[g.graph.edges(e, 1)] = 1;
+  for (int v = 0; v < g.mapped.num_vertices(); ++v)
+    if (!on_cut[v]) movable.push_back(g.mapped.FUV(g.graph.fan_faces[g.graph.fan_start[v]], g.graph.fan_corners[g.graph.fan_start[v]]));
+  int with_holes = 0;
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> offset(-1.5, 1.5);
+    Mesh m = g.mapped;
+    for (int k = 0; k < 1 + static_cast<int>(seed % 5); ++k)
+      m.UV.row(movable[rng() % movable.size()]) += Eigen::RowVector2d(offset(rng), offset(rng));
+    const QuadExtraction x = extract_quads(m);
+    EXPECT_EQ(x.non_manifold_edges, 0) << "seed " << seed;
+    for (int i = 0; i < x.mesh.num_quads(); ++i)
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) EXPECT_NE(x.mesh.Q(i, a), x.mesh.Q(i, b)) << "seed " << seed;
+    if (x.flipped_triangles == 0) EXPECT_TRUE(x.complete) << "seed " << seed;
+    if (x.flipped_triangles > 0) {
+      EXPECT_FALSE(x.complete) << "seed " << seed;
+      EXPECT_GT(x.dropped_squares, 0) << "seed " << seed;
+      ++with_holes;
+    }
+    EXPECT_LE(x.mesh.num_quads(), 128) << "seed " << seed;
+  }
+  EXPECT_GT(with_holes, 10);
+}
+
 // Relabelling the vertices, the faces and each face's corners gives the same quad mesh (the
 // same vertex positions, the same counts).
 TEST(QuadExtraction, RelabellingChangesNothing) {

@@ -14,13 +14,16 @@ const std::array<Eigen::Vector2d, 4> kCornerOffsets = {Eigen::Vector2d(-0.5, -0.
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Whether the segment a-b runs through the open square of centre c (shrunk by tol) over a
-// length of more than tol: clipped to the box one axis at a time (Liang-Barsky).
-bool crosses_open_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, double tol) {
+// Whether the segment a-b meets the closed square of centre c (grown by tol) over a length of
+// more than 3 tol: an edge through the square or along one of its sides, but not one that
+// only touches a corner (around a cone at the corner the flood would otherwise go all the
+// way round and meet its start in another chart). Clipped to the box one axis at a time
+// (Liang-Barsky).
+bool meets_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, double tol) {
   const Eigen::Vector2d d = b - a;
   double t0 = 0, t1 = 1;
   for (int k = 0; k < 2; ++k) {
-    const double lo = c(k) - 0.5 + tol, hi = c(k) + 0.5 - tol;
+    const double lo = c(k) - 0.5 - tol, hi = c(k) + 0.5 + tol;
     if (d(k) == 0) {
       if (a(k) <= lo || a(k) >= hi) return false;
       continue;
@@ -30,7 +33,7 @@ bool crosses_open_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, con
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
   }
-  return t1 > t0 && (t1 - t0) * d.norm() > tol;
+  return t1 > t0 && (t1 - t0) * d.norm() > 3 * tol;
 }
 
 // The signed area of triangle (p0, p1, p2) inside the closed square of centre c
@@ -135,11 +138,13 @@ SquareFlood SquareFlooder::flood(int face, const Eigen::Vector2d& centre) {
   return out;
 }
 
-// Crosses side `side` of face when it runs through the open square; false when the edge is
+// Crosses side `side` of face when it runs through the square or along one of its sides (so
+// that a fold hanging from a side of the square is reached: a flipped triangle next to the
+// square, across an edge on the grid line, leaves the square out); false when the edge is
 // degenerate in UV (its transition unknown). A face reached again in another chart sets wraps_.
 bool SquareFlooder::cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue) {
   const auto t = face_uvs(map_, face);
-  if (!crosses_open_square(t[side], t[(side + 1) % 3], here.centre, tolerance_)) return true;
+  if (!meets_square(t[side], t[(side + 1) % 3], here.centre, tolerance_)) return true;
   const int e = graph_.face_edges(face, side), h = graph_.neighbour(face, side);
   if (!transitions_[e].known) return false;
   const Visit carried = carried_across(face, side, here);

@@ -1,7 +1,7 @@
 #pragma once
 // One unit square of an integer-grid map's UV, followed over the surface (quad extraction,
 // include/strictmin/tasks/quad_extraction.h): from a triangle holding its centre, across
-// every edge that crosses its open interior, each seam's transition applied.
+// every edge that meets it (through it or along a side), each seam's transition applied.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>

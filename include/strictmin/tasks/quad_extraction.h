@@ -5,7 +5,7 @@
 // every unit square [i, i+1] x [j, j+1] of UV is one quad of the surface.
 //
 // Each square is found from a triangle containing its centre and flooded across the edges
-// that cross its open interior, carried through each seam's transition: the faces it
+// that meet it (through it or along its sides), carried through each seam's transition: the faces it
 // covers, their UV areas inside it (which must add up to 1) and the triangles holding its
 // four corners. A corner is a surface point: a vertex, a point on an edge or inside a face,
 // so corners found from different squares are one vertex of the quad mesh.
