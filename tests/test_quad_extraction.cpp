@@ -158,8 +158,9 @@ TEST(QuadExtraction, RandomFoldsLeaveAManifoldQuadMesh) {
     for (int i = 0; i < x.mesh.num_quads(); ++i)
       for (int a = 0; a < 4; ++a)
         for (int b = a + 1; b < 4; ++b) EXPECT_NE(x.mesh.Q(i, a), x.mesh.Q(i, b)) << "seed " << seed;
-    if (x.flipped_triangles == 0) EXPECT_TRUE(x.complete) << "seed " << seed;
-    if (x.flipped_triangles > 0) {
+    if (x.flipped_triangles == 0) {
+      EXPECT_TRUE(x.complete) << "seed " << seed;
+    } else {
       EXPECT_FALSE(x.complete) << "seed " << seed;
       EXPECT_GT(x.dropped_squares, 0) << "seed " << seed;
       ++with_holes;
@@ -290,6 +291,12 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   open.F = open.F.bottomRows(open.F.rows() - 1).eval();
   open.FUV = open.FUV.bottomRows(open.FUV.rows() - 1).eval();
   expect_input_error([&] { extract_quads(open, {}, "open.obj"); }, {"open.obj", "boundary loop", "closed surfaces"});
+
+  // UVs not in grid units (the cube's map scaled by 1e5: still an integer-grid map, of 1.5e12
+  // squares) are refused before any work.
+  Mesh huge = polycube_grid_map(cube, 1.0).mapped;
+  huge.UV *= 1e5;
+  expect_input_error([&] { extract_quads(huge, {}, "huge.obj"); }, {"huge.obj", "grid units"});
 
   QuadExtractionOptions bad;
   bad.tolerance = 0;

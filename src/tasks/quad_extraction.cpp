@@ -2,6 +2,7 @@
 #include "strictmin/tasks/quad_extraction.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -18,8 +19,20 @@
 namespace strictmin {
 namespace {
 
-// More unit squares than this are refused: the UVs are then most likely not in grid units.
-constexpr double kMaxSquares = 5e7;
+// More unit squares than this, or triangles spanning more grid columns in all, are refused:
+// the UVs are then most likely not in grid units (and the work would not end).
+constexpr double kMaxSquares = 5e7, kMaxColumns = 2e8;
+
+// The grid columns the triangles span, added up (the enumeration of centres visits each).
+double uv_columns(const Mesh& map) {
+  double columns = 0;
+  for (int f = 0; f < map.num_elements(); ++f) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < 3; ++i) lo = std::min(lo, map.UV(map.FUV(f, i), 0)), hi = std::max(hi, map.UV(map.FUV(f, i), 0));
+    columns += hi - lo + 1;
+  }
+  return columns;
+}
 
 std::string prefix(const std::string& source) { return source.empty() ? std::string("quads: ") : source + ": "; }
 
@@ -49,6 +62,31 @@ struct Squares {
   int touching_flips = 0, wrapped = 0, not_covered_once = 0, overlapping = 0;
 };
 
+// The half-integer points (square centres) in the closed UV triangle of face f, column by
+// column (x = i + 1/2): the work is the columns the face spans and the centres it holds,
+// however thin the face.
+std::vector<Eigen::Vector2d> centres_in_face(const Mesh& map, int f, double tolerance) {
+  const std::array<Eigen::Vector2d, 3> t = {corner_uv(map, f, 0), corner_uv(map, f, 1), corner_uv(map, f, 2)};
+  const double x_lo = std::min({t[0].x(), t[1].x(), t[2].x()}), x_hi = std::max({t[0].x(), t[1].x(), t[2].x()});
+  std::vector<Eigen::Vector2d> centres;
+  for (double i = std::ceil(x_lo - 0.5 - tolerance); i <= std::floor(x_hi - 0.5 + tolerance); ++i) {
+    const double x = i + 0.5;
+    double y_lo = INFINITY, y_hi = -INFINITY;  // the face's y range on the line x (within tolerance)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = t[k], b = t[(k + 1) % 3];
+      const double ax = std::min(a.x(), b.x()) - tolerance, bx = std::max(a.x(), b.x()) + tolerance;
+      if (x < ax || x > bx) continue;
+      const double s = b.x() != a.x() ? std::clamp((x - a.x()) / (b.x() - a.x()), 0.0, 1.0) : 0.0;
+      const double y = a.y() + s * (b.y() - a.y());
+      y_lo = std::min({y_lo, y, b.x() == a.x() ? std::min(a.y(), b.y()) : y});
+      y_hi = std::max({y_hi, y, b.x() == a.x() ? std::max(a.y(), b.y()) : y});
+    }
+    for (double j = std::ceil(y_lo - 0.5 - tolerance); j <= std::floor(y_hi - 0.5 + tolerance); ++j)
+      if (uv_face_contains(map, f, {x, j + 0.5}, tolerance)) centres.emplace_back(x, j + 0.5);
+  }
+  return centres;
+}
+
 // Every unit square, flooded once: started from each face of positive UV area at each
 // half-integer centre it holds, unless an earlier flood already passed that centre there.
 Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std::vector<UvTransition>& transitions,
@@ -61,21 +99,17 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   };
   for (int f = 0; f < graph.num_faces; ++f) {
     if (!(doubled_uv_area(map, f) > 0)) continue;
-    Eigen::Vector2d lo = corner_uv(map, f, 0), hi = lo;
-    for (int i = 1; i < 3; ++i) lo = lo.cwiseMin(corner_uv(map, f, i)), hi = hi.cwiseMax(corner_uv(map, f, i));
-    for (double i = std::ceil(lo.x() - 0.5 - tolerance); i <= std::floor(hi.x() - 0.5 + tolerance); ++i)
-      for (double j = std::ceil(lo.y() - 0.5 - tolerance); j <= std::floor(hi.y() - 0.5 + tolerance); ++j) {
-        const Eigen::Vector2d c(i + 0.5, j + 0.5);
-        if (!uv_face_contains(map, f, c, tolerance) || started.count(start_key(f, c))) continue;
-        const SquareFlood s = flooder.flood(f, c);
-        for (const auto& [g, centre] : s.centres) started.insert(start_key(g, centre));
-        switch (s.outcome) {
-          case SquareFlood::Outcome::Quad: out.quads.push_back({s.corners}); break;
-          case SquareFlood::Outcome::TouchesFlip: ++out.touching_flips; break;
-          case SquareFlood::Outcome::Wraps: ++out.wrapped; break;
-          case SquareFlood::Outcome::NotCoveredOnce: ++out.not_covered_once; break;
-        }
+    for (const Eigen::Vector2d& c : centres_in_face(map, f, tolerance)) {
+      if (started.count(start_key(f, c))) continue;
+      const SquareFlood s = flooder.flood(f, c);
+      for (const auto& [g, centre] : s.centres) started.insert(start_key(g, centre));
+      switch (s.outcome) {
+        case SquareFlood::Outcome::Quad: out.quads.push_back({s.corners}); break;
+        case SquareFlood::Outcome::TouchesFlip: ++out.touching_flips; break;
+        case SquareFlood::Outcome::Wraps: ++out.wrapped; break;
+        case SquareFlood::Outcome::NotCoveredOnce: ++out.not_covered_once; break;
       }
+    }
   }
   return out;
 }
@@ -216,9 +250,10 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
     x.uv_area += area2 / 2;
     if (!(area2 > 0)) ++x.flipped_triangles;
   }
-  if (x.uv_area > kMaxSquares)
+  if (x.uv_area > kMaxSquares || uv_columns(map) > kMaxColumns)
     throw InputError(prefix(source) + "the map covers " + std::to_string(std::llround(x.uv_area)) +
-                     " unit squares (more than 5e7): are the UVs in grid units?");
+                     " unit squares and its triangles span " + std::to_string(std::llround(uv_columns(map))) +
+                     " grid columns (at most 5e7 and 2e8): are the UVs in grid units?");
 
   Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
   drop_overlapping_squares(squares);
