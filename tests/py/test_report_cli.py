@@ -118,6 +118,11 @@ class Report(unittest.TestCase):
             self.assertIn("3 results for input example:", html)
             self.assertTrue(any(name.startswith("input.") for _, _, files in os.walk(out) for name in files),
                             section + ": the rest surface is drawn")
+        # The gparam section's integer-grid map and its quad mesh (docs/gparam.md, "Quad meshes").
+        for name in ("grid.obj", "quads.obj", "quads.png"):
+            self.assertTrue(os.path.getsize(os.path.join(demo, "gparam", name)) > 0, name)
+        with open(os.path.join(demo, "index.html")) as f:
+            self.assertIn("gparam/quads.png", f.read())
 
     def test_a_report_into_an_earlier_ones_folder_removes_its_stale_files(self):
         # The pictures of a run no longer in the report stayed beside the new index.html.
