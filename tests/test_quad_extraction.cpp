@@ -71,7 +71,40 @@ TEST(QuadExtraction, TheCubeGivesItsGrid) {
     EXPECT_EQ(x.dropped_squares + x.boundary_edges + x.non_manifold_edges + x.flipped_triangles, 0);
     EXPECT_NEAR(x.uv_area, 6.0 * n * n, 1e-9);
     expect_grid_of_squares(x.mesh, h, Eigen::Vector3d(2.5, 2.5, 2.5));
+    EXPECT_NEAR(x.quality.min_angle_deg, 90, 1e-6);
+    EXPECT_NEAR(x.quality.max_angle_deg, 90, 1e-6);
+    EXPECT_NEAR(x.quality.min_scaled_jacobian, 1, 1e-9);
+    EXPECT_NEAR(x.quality.min_side, h, 1e-9);
+    EXPECT_NEAR(x.quality.max_side, h, 1e-9);
+    EXPECT_NEAR(x.quality.mean_side, h, 1e-9);
   }
+}
+
+// Quality figures against closed forms: a rhombus of side 1 with angles of 60 and 120 degrees
+// (scaled Jacobian sin 60), and a dart whose reflex corner has a negative scaled Jacobian.
+TEST(QuadExtraction, QualityOfARhombusAndADart) {
+  QuadMesh q;
+  const double s = std::sqrt(3.0) / 2;
+  q.V.resize(8, 3);
+  q.V << 0, 0, 0, 1, 0, 0, 1.5, s, 0, 0.5, s, 0,  // rhombus
+      10, 0, 0, 12, 0, 0, 12, 2, 0, 11.5, 0.5, 0;  // dart, reflex at (11.5, 0.5)
+  q.Q.resize(1, 4);
+  q.Q << 0, 1, 2, 3;
+  QuadQuality r = quad_quality(q);
+  EXPECT_NEAR(r.min_angle_deg, 60, 1e-9);
+  EXPECT_NEAR(r.max_angle_deg, 120, 1e-9);
+  EXPECT_NEAR(r.min_scaled_jacobian, s, 1e-12);
+  EXPECT_NEAR(r.min_side, 1, 1e-12);
+  EXPECT_NEAR(r.max_side, 1, 1e-12);
+  EXPECT_NEAR(r.mean_side, 1, 1e-12);
+  q.Q << 4, 5, 6, 7;
+  r = quad_quality(q);
+  // At the reflex corner the side to the next corner, (10, 0), turns clockwise to the side to
+  // the previous one, (12, 2): (-1.5, -0.5) x (0.5, 1.5) = -2 over |a| |b| = 2.5.
+  EXPECT_NEAR(r.min_scaled_jacobian, -0.8, 1e-12);
+  EXPECT_NEAR(r.min_side, std::sqrt(2.5), 1e-12);
+  EXPECT_NEAR(r.max_side, 2, 1e-12);
+  EXPECT_TRUE(std::isnan(quad_quality(QuadMesh{}).min_angle_deg));
 }
 
 // The frame of 8 unit cubes (genus 1) at h = 0.5: its area 32 in 128 squares, 8 convex

@@ -273,6 +273,12 @@ nlohmann::json quad_extraction_summary(const QuadExtraction& x) {
   }
   s["valences"] = valences;
   s["irregular_vertices"] = irregular;
+  s["min_angle_deg"] = number_or_null(x.quality.min_angle_deg);
+  s["max_angle_deg"] = number_or_null(x.quality.max_angle_deg);
+  s["min_scaled_jacobian"] = number_or_null(x.quality.min_scaled_jacobian);
+  s["min_side"] = number_or_null(x.quality.min_side);
+  s["max_side"] = number_or_null(x.quality.max_side);
+  s["mean_side"] = number_or_null(x.quality.mean_side);
   s["time_s"] = x.time_s;
   return s;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <set>
 #include <unordered_map>
@@ -229,6 +230,33 @@ void check_topology(QuadExtraction& x) {
 
 }  // namespace
 
+QuadQuality quad_quality(const QuadMesh& q) {
+  QuadQuality r;
+  if (q.num_quads() == 0) return r;
+  r.min_angle_deg = r.min_scaled_jacobian = r.min_side = INFINITY;
+  r.max_angle_deg = r.max_side = -INFINITY;
+  double total_side = 0;
+  for (int i = 0; i < q.num_quads(); ++i) {
+    Eigen::Vector3d p[4];
+    for (int k = 0; k < 4; ++k) p[k] = q.V.row(q.Q(i, k)).transpose();
+    const Eigen::Vector3d n = (p[2] - p[0]).cross(p[3] - p[1]);
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d a = p[(k + 1) % 4] - p[k], b = p[(k + 3) % 4] - p[k];
+      const double la = a.norm(), lb = b.norm();
+      r.min_side = std::min(r.min_side, la);
+      r.max_side = std::max(r.max_side, la);
+      total_side += la;
+      const double angle = la > 0 && lb > 0 ? std::acos(std::clamp(a.dot(b) / (la * lb), -1.0, 1.0)) * 180 / M_PI : 0.0;
+      r.min_angle_deg = std::min(r.min_angle_deg, angle);
+      r.max_angle_deg = std::max(r.max_angle_deg, angle);
+      const double scale = la * lb * n.norm();
+      r.min_scaled_jacobian = std::min(r.min_scaled_jacobian, scale > 0 ? a.cross(b).dot(n) / scale : 0.0);
+    }
+  }
+  r.mean_side = total_side / (4.0 * q.num_quads());
+  return r;
+}
+
 std::string QuadExtractionOptions::invalid_reason() const {
   if (!(tolerance > 0 && tolerance < 0.1)) return "the tolerance must be in (0, 0.1) UV units";
   return "";
@@ -264,6 +292,7 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping;
   x.mesh = assemble(map, squares.quads);
   check_topology(x);
+  x.quality = quad_quality(x.mesh);
   x.complete = x.dropped_squares == 0 && x.flipped_triangles == 0 && x.boundary_edges == 0 &&
                x.non_manifold_edges == 0 && x.euler_characteristic == x.surface_euler_characteristic &&
                std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area);

@@ -17,6 +17,7 @@
 // quad mesh with the surface's Euler characteristic, one quad per unit of UV area, and a
 // vertex of valence 4 - k at each cone of index k/4.
 #include <Eigen/Core>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -45,6 +46,19 @@ struct QuadMesh {
   int num_quads() const { return static_cast<int>(Q.rows()); }
 };
 
+// The quads' shapes in 3D (none: every figure NaN). At a corner with sides a and b (to the
+// next and the previous corner) and the quad's normal n (the cross product of its diagonals),
+// the angle is that between a and b, and the scaled Jacobian (a x b) . n / (|a| |b| |n|):
+// 1 for a right angle, 0 for a degenerate corner, negative for a corner folded over.
+struct QuadQuality {
+  double min_angle_deg = NAN, max_angle_deg = NAN;
+  double min_scaled_jacobian = NAN;
+  double min_side = NAN, max_side = NAN, mean_side = NAN;  // surface units
+};
+
+// The quality figures of a quad mesh.
+QuadQuality quad_quality(const QuadMesh& quads);
+
 struct QuadExtraction {
   QuadMesh mesh;
   // Closed, manifold, every unit square a quad, and the surface's Euler characteristic.
@@ -62,6 +76,7 @@ struct QuadExtraction {
   int euler_characteristic = 0;          // of the quad mesh
   int surface_euler_characteristic = 0;  // of the input surface
   std::map<int, int> valences;           // valence -> how many vertices
+  QuadQuality quality;
   double time_s = 0;
 };
 
