@@ -40,11 +40,23 @@ def cube_obj(n=3, side=2.0, offset=0.0):
     return lines, len(verts)
 
 
-KEYS = {"task", "singularities", "singularity_indices", "euler_characteristic", "seam_edges", "edge_length",
-        "seam_error", "max_distortion", "l2_distortion", "flipped", "status", "method", "measure"}
+def edge_aligned_field(lines):
+    """The cube's field along its edges as field-file text (x, or y on the faces normal to x):
+    the smoothest field may come out at any global angle, and then the corners are not a whole
+    number of grid units apart."""
+    verts = [[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")]
+    field = []
+    for l in lines:
+        if l.startswith("f "):
+            corners = [verts[int(i) - 1] for i in l.split()[1:]]
+            normal_x = all(abs(c[0] - corners[0][0]) < 1e-12 for c in corners)
+            field.append("0 1 0" if normal_x else "1 0 0")
+    return "\n".join(field) + "\n"
 
 
-class GParam(unittest.TestCase):
+class CubeCase(unittest.TestCase):
+    """A temporary folder holding the cube (cube.obj), with helpers to write and name files there."""
+
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.dir = self.tmp.name
@@ -63,6 +75,12 @@ class GParam(unittest.TestCase):
     def out(self, name):
         return os.path.join(self.dir, name)
 
+
+KEYS = {"task", "singularities", "singularity_indices", "euler_characteristic", "seam_edges", "edge_length",
+        "seam_error", "max_distortion", "l2_distortion", "flipped", "status", "method", "measure"}
+
+
+class GParam(CubeCase):
     def gparam(self, *args, code=0):
         summary = self.out("s.json")
         run("gparam", *args, "--summary", summary, "--quiet", check_code=code)
@@ -96,19 +114,11 @@ class GParam(unittest.TestCase):
         self.assertTrue(all("/" in l for l in fs))
 
     def test_integer_grid(self):
-        # The cube of side 2 at h = 0.5 with its edge-aligned field (a field file: x, or y on the
-        # faces normal to x; the smoothest field may come out at any global angle, and then the
-        # corners are not a whole number of grid units apart): its corners are 4 grid units apart,
-        # so the rounded map keeps distortion 0, with every corner and seam translation on the grid.
+        # The cube of side 2 at h = 0.5 with its edge-aligned field: its corners are 4 grid units
+        # apart, so the rounded map keeps distortion 0, with every corner and seam translation on
+        # the grid.
         lines, _ = cube_obj()
-        verts = [[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")]
-        field = []
-        for l in lines:
-            if l.startswith("f "):
-                corners = [verts[int(i) - 1] for i in l.split()[1:]]
-                normal_x = all(abs(c[0] - corners[0][0]) < 1e-12 for c in corners)
-                field.append("0 1 0" if normal_x else "1 0 0")
-        field_file = self.write("edges.txt", "\n".join(field) + "\n")
+        field_file = self.write("edges.txt", edge_aligned_field(lines))
         out = self.out("grid.obj")
         for method in ("l2", "linf", "relax"):
             s = self.gparam(self.cube, "-o", out, "--method", method, "--edge-length", "0.5", "--integer-grid",

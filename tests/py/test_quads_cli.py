@@ -4,11 +4,10 @@ with flipped triangles (holes, exit 2, the quads kept written), and bad input (e
 message naming the problem, no output file). Run by ctest with STRICTMIN_CLI set."""
 import json
 import os
-import tempfile
 import unittest
 
 from cli_support import run
-from test_gparam_cli import cube_obj
+from test_gparam_cli import CubeCase, cube_obj, edge_aligned_field
 
 
 def read_obj(path):
@@ -25,32 +24,11 @@ def read_obj(path):
     return V, vts, faces
 
 
-class Quads(unittest.TestCase):
+class Quads(CubeCase):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
+        super().setUp()
         lines, _ = cube_obj()  # side 2, 3 by 3 cells a side
-        self.cube = self.write("cube.obj", "\n".join(lines) + "\n")
-        # The cube's edge-aligned field (as in test_gparam_cli's integer-grid test).
-        verts = [[float(x) for x in l.split()[1:]] for l in lines if l.startswith("v ")]
-        field = []
-        for l in lines:
-            if l.startswith("f "):
-                corners = [verts[int(i) - 1] for i in l.split()[1:]]
-                field.append("0 1 0" if all(abs(c[0] - corners[0][0]) < 1e-12 for c in corners) else "1 0 0")
-        self.field = self.write("edges.txt", "\n".join(field) + "\n")
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def write(self, name, text):
-        p = os.path.join(self.dir, name)
-        with open(p, "w") as f:
-            f.write(text)
-        return p
-
-    def out(self, name):
-        return os.path.join(self.dir, name)
+        self.field = self.write("edges.txt", edge_aligned_field(lines))
 
     def grid_map(self, *extra, code=0):
         summary = self.out("gparam.json")

@@ -103,3 +103,13 @@ def ellipsoid(subdivisions=2, axes=(1.0, 0.8, 0.6)):
         F = [f for a, b, c in F for f in ([a, mid(a, b), mid(c, a)], [b, mid(b, c), mid(a, b)],
                                           [c, mid(c, a), mid(b, c)], [mid(a, b), mid(b, c), mid(c, a)])]
     return np.array(V) * np.asarray(axes, dtype=float), np.array(F, dtype=np.int64)
+
+
+def ellipsoid_file(tmp_path_factory, subdivisions, folder):
+    """ellipsoid(subdivisions) written to an OBJ in a fresh folder and read back: the file, and
+    V, F as the tool reads them from it."""
+    V, F = ellipsoid(subdivisions)
+    mesh = tmp_path_factory.mktemp(folder) / "ellipsoid.obj"
+    strictmin.write_mesh(mesh, V, F)
+    V, F = strictmin.read_mesh(mesh)
+    return mesh, V, F

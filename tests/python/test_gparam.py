@@ -4,18 +4,14 @@ import numpy as np
 import pytest
 
 import strictmin
-from conftest import ellipsoid, grid, saddle
+from conftest import ellipsoid_file, grid, saddle
 from test_matches_cli import cli_run, same_summary
 
 
 @pytest.fixture(scope="module")
 def closed(tmp_path_factory):
     """A small closed surface (320 triangles) as the tool reads it back from a file."""
-    V, F = ellipsoid(2)
-    mesh = tmp_path_factory.mktemp("gparam") / "ellipsoid.obj"
-    strictmin.write_mesh(mesh, V, F)
-    V, F = strictmin.read_mesh(mesh)
-    return mesh, V, F
+    return ellipsoid_file(tmp_path_factory, 2, "gparam")
 
 
 def test_matches_cli(tmp_path, closed):

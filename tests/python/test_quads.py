@@ -7,18 +7,14 @@ import numpy as np
 import pytest
 
 import strictmin
-from conftest import ellipsoid, run_cli
+from conftest import ellipsoid_file, run_cli
 from test_matches_cli import same_summary
 
 
 @pytest.fixture(scope="module")
 def closed(tmp_path_factory):
     """A small closed surface (1280 triangles) as the tool reads it back from a file."""
-    V, F = ellipsoid(3)
-    mesh = tmp_path_factory.mktemp("quads") / "ellipsoid.obj"
-    strictmin.write_mesh(mesh, V, F)
-    V, F = strictmin.read_mesh(mesh)
-    return mesh, V, F
+    return ellipsoid_file(tmp_path_factory, 3, "quads")
 
 
 def read_quad_obj(path):
