@@ -26,7 +26,8 @@ struct GParamArgs {
   std::string mesh, output, field = "smoothest", field_out, measure = "fd", cones, cones_out, grid_guide, quad_mesh;
   double edge_length = 0, curvature_alignment = 0.01;
   int quads = 0;
-  bool edge_length_given = false, quads_given = false, curvature_alignment_given = false, parallel = false, integer_grid = false;
+  bool edge_length_given = false, quads_given = false, curvature_alignment_given = false, parallel = false, integer_grid = false,
+       fill_holes = false;
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
   LocalGlobalArgs lg_steps;  // --lg-acceleration, --lg-extrapolation, --lg-cold-start
@@ -70,6 +71,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   }
   if (!a.quad_mesh.empty() && !a.integer_grid)
     throw InputError("--quad-mesh needs --integer-grid: quads come from an integer-grid map");
+  if (a.fill_holes && a.quad_mesh.empty()) throw InputError("--fill-holes applies to --quad-mesh only");
   if (!a.cones.empty()) {
     if (a.field != "smoothest") throw InputError("give --cones or --field " + a.field + ", not both");
     o.cones = read_cone_file(a.cones, mesh.num_vertices());
@@ -90,6 +92,12 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
     o.progress = [](const std::string& line) { std::fprintf(stderr, "gparam %s\n", line.c_str()); };
     o.local_global.progress = [](const IterationRecord& r) { print_local_global_progress(r, ""); };
   }
+  return o;
+}
+
+QuadExtractionOptions quad_options(const GParamArgs& a) {
+  QuadExtractionOptions o;
+  o.fill_holes = a.fill_holes;
   return o;
 }
 
@@ -128,7 +136,7 @@ int run_gparam(const GParamArgs& a) {
   if (!a.quad_mesh.empty()) {
     progress(a.out, "gparam: quad extraction");
     if (status_usable(g.result.status))
-      quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh);
+      quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, quad_options(a));
     else
       quads.summary = {{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
     s["quad_mesh"] = quads.summary;
@@ -190,6 +198,9 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--quad-mesh", args->quad_mesh,
                   "--integer-grid: also write the map's quad mesh (.obj), one quad per unit square (as 'strictmin "
                   "quads'); squares next to flipped triangles are left out as holes, and the exit code is then 2");
+  cmd->add_flag("--fill-holes", args->fill_holes,
+                "--quad-mesh: fill the holes the map's folds leave with the grid's squares where their boundary allows "
+                "(as 'strictmin quads --fill-holes')");
   cmd->add_option("--quads", args->quads, "Choose h so that the surface has about N unit squares (default 1000; >= 1)");
   cmd->add_option("--measure", args->measure, "fd (against the field, default) or arap (local-global on top)")
       ->capture_default_str();

@@ -8,7 +8,13 @@ namespace strictmin::cli {
 std::string quad_extraction_phrase(const QuadExtraction& x) {
   std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
                      " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
+  if (x.complete && x.filled_squares > 0)
+    return line + ", complete after filling " + std::to_string(x.filled_holes) + " hole(s) with " +
+           std::to_string(x.filled_squares) + " squares";
   if (x.complete) return line + ", complete";
+  if (x.filled_squares > 0)
+    line += ", " + std::to_string(x.filled_holes) + " hole(s) filled with " + std::to_string(x.filled_squares) +
+            " squares";
   return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
          " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
          std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +
@@ -16,11 +22,12 @@ std::string quad_extraction_phrase(const QuadExtraction& x) {
          std::to_string(x.squares_overlapping) + " overlap others)";
 }
 
-QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source) {
+QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source,
+                           const QuadExtractionOptions& options) {
   QuadOutput out;
   QuadExtraction x;
   try {
-    x = extract_quads(map, {}, source);
+    x = extract_quads(map, options, source);
   } catch (const InputError& e) {
     out.summary = {{"status", "not-extracted"}, {"reason", e.what()}, {"file", ""}};
     return out;

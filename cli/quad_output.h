@@ -22,6 +22,7 @@ struct QuadOutput {
 // summary has the extraction's keys and `file` (the path, "" when none was written); when
 // the map is not an integer-grid map (an InputError from the extraction) it is
 // {"status": "not-extracted", "reason": ..., "file": ""} and nothing is written.
-QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source);
+QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::string& source,
+                           const QuadExtractionOptions& options = {});
 
 }  // namespace strictmin::cli

@@ -16,6 +16,7 @@ namespace {
 struct QuadsArgs {
   std::string map, output;
   double tolerance = 1e-6;
+  bool fill_holes = false;
   OutputOptions out;
 };
 
@@ -26,6 +27,7 @@ int run_quads(const QuadsArgs& a) {
   if (!a.out.distortion.empty()) throw InputError("--distortion does not apply to quads (no distortion is measured)");
   QuadExtractionOptions options;
   options.tolerance = a.tolerance;
+  options.fill_holes = a.fill_holes;
   std::vector<std::string> warnings;
   const Mesh map = read_mesh(a.map, &warnings);
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
@@ -37,6 +39,7 @@ int run_quads(const QuadsArgs& a) {
   s["input"] = a.map;
   s["output"] = a.output;
   s["tolerance"] = a.tolerance;
+  s["fill_holes"] = a.fill_holes;
   add_provenance_summary(s);
   write_outputs(a.out, s, Eigen::VectorXd());
   progress(a.out, "quads: " + quad_extraction_phrase(x));
@@ -58,6 +61,10 @@ void add_quads_command(CLI::App& app, int& exit_code) {
                   "edge a grid point counts as on it")
       ->capture_default_str()
       ->check(open_range(0, 0.1));
+  cmd->add_flag("--fill-holes", args->fill_holes,
+                "Fill each hole left by a fold with the grid's squares inside its boundary, when the boundary unfolds "
+                "into a simple loop with no cone on or in it: its inner vertices are placed by averaging, off the "
+                "surface (status 'filled')");
   add_output_options(*cmd, args->out);
   cmd->callback([args, &exit_code] { exit_code = run_quads(*args); });
 }

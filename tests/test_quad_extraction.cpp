@@ -203,6 +203,53 @@ TEST(QuadExtraction, RandomFoldsLeaveAManifoldQuadMesh) {
   EXPECT_GT(with_holes, 10);
 }
 
+// Folds away from the cones on the cube (a vertex off the seams moved by a grid unit and a half
+// along u) leave holes; filled, each hole takes the grid's squares inside its boundary: the
+// cube's quad mesh again (150 quads, 152 vertices, the 8 corners of valence 3), its filled
+// vertices off the input's triangles but near the cube's faces.
+TEST(QuadExtraction, FilledHolesGiveTheCubesQuadMeshBack) {
+  const GParamOutcome g = polycube_grid_map(make_cube_surface(3), 1.0);
+  ASSERT_TRUE(g.result.ok());
+  std::vector<char> on_cut(g.mapped.num_vertices(), 0);
+  for (int e = 0; e < g.graph.num_edges(); ++e)
+    if (g.cut.cut[e]) on_cut[g.graph.edges(e, 0)] = on_cut[g.graph.edges(e, 1)] = 1;
+  int filled = 0, folded = 0;
+  for (int v = 0; v < g.mapped.num_vertices(); ++v) {
+    if (on_cut[v]) continue;
+    Mesh m = g.mapped;
+    m.UV.row(m.FUV(g.graph.fan_faces[g.graph.fan_start[v]], g.graph.fan_corners[g.graph.fan_start[v]])) +=
+        Eigen::RowVector2d(1.5, 0.2);
+    const QuadExtraction holes = extract_quads(m);
+    if (holes.flipped_triangles == 0) continue;
+    ++folded;
+    EXPECT_FALSE(holes.complete);
+    QuadExtractionOptions o;
+    o.fill_holes = true;
+    const QuadExtraction x = extract_quads(m, o);
+    EXPECT_EQ(x.non_manifold_edges, 0) << "vertex " << v;
+    if (!x.complete) continue;  // a hole that touches a cone or meets another stays
+    ++filled;
+    EXPECT_GT(x.filled_squares, 0);
+    EXPECT_EQ(x.mesh.num_quads(), 150) << "vertex " << v;
+    EXPECT_EQ(x.mesh.num_vertices(), 152) << "vertex " << v;
+    EXPECT_EQ(x.valences.at(3), 8);
+    EXPECT_EQ(x.holes, 0);
+    EXPECT_EQ(x.euler_characteristic, 2);
+    int placed = 0;  // the filled holes' inner vertices: off the surface's triangles
+    for (int i = 0; i < x.mesh.num_vertices(); ++i) {
+      if (x.mesh.vertex_face(i) >= 0) continue;
+      ++placed;
+      const Eigen::Vector3d p = x.mesh.V.row(i).transpose() - Eigen::Vector3d(2.5, 2.5, 2.5);
+      EXPECT_NEAR(p.cwiseAbs().maxCoeff(), 2.5, 0.25) << "vertex " << v << ": filled vertex " << i;
+    }
+    EXPECT_EQ(placed, x.mesh.num_vertices() - holes.mesh.num_vertices()) << "vertex " << v;
+    EXPECT_GT(x.quality.min_scaled_jacobian, 0) << "vertex " << v;
+  }
+  std::printf("%d folds, %d filled completely\n", folded, filled);
+  EXPECT_GE(folded, 10);
+  EXPECT_GE(filled, 3);
+}
+
 // Relabelling the vertices, the faces and each face's corners gives the same quad mesh (the
 // same vertex positions, the same counts).
 TEST(QuadExtraction, RelabellingChangesNothing) {

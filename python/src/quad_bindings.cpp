@@ -14,7 +14,7 @@ namespace strictmin::python {
 namespace {
 
 py::dict quads_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd& uv, const RowMatrixXi& fuv,
-                  double tolerance) {
+                  double tolerance, bool fill_holes) {
   Mesh map = make_mesh(V, F, "mesh", true, nullptr);
   if (uv.cols() != 2) throw InputError("uv must be #UV by 2, got " + std::to_string(uv.cols()) + " columns");
   if (fuv.rows() != F.rows() || fuv.cols() != 3)
@@ -24,10 +24,12 @@ py::dict quads_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd&
   map.FUV = fuv;
   QuadExtractionOptions options;
   options.tolerance = tolerance;
+  options.fill_holes = fill_holes;
   const QuadExtraction x = extract_quads(map, options, "mesh");
   nlohmann::json s = quad_extraction_summary(x);
   s["task"] = "quads";
   s["tolerance"] = tolerance;
+  s["fill_holes"] = fill_holes;
   add_provenance_summary(s);
   py::dict out;
   out["V"] = RowMatrixXd(x.mesh.V);
@@ -44,7 +46,8 @@ py::dict quads_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd&
 }  // namespace
 
 void bind_quads(py::module_& m) {
-  m.def("quads", &quads_py, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("fuv"), py::arg("tolerance"));
+  m.def("quads", &quads_py, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("fuv"), py::arg("tolerance"),
+        py::arg("fill_holes"));
 }
 
 }  // namespace strictmin::python

@@ -379,7 +379,7 @@ def distortion(V, F, U, measure="arap"):
     return np.ascontiguousarray(_strictmin.distortion(V, F, U, _text(measure, "measure"))["distortion"])
 
 
-def quads(V, F, uv, fuv, tolerance=1e-6):
+def quads(V, F, uv, fuv, tolerance=1e-6, fill_holes=False):
     """The quad mesh of an integer-grid map (gparam with integer_grid=True: its ``uv`` and
     ``fuv``; the command line's ``strictmin quads``; docs/gparam.md, "Quad meshes"): one quad
     per unit square of UV. Returns a dict: ``V`` (#vertices by 3, on the surface), ``Q``
@@ -388,14 +388,18 @@ def quads(V, F, uv, fuv, tolerance=1e-6):
     ``complete`` (every square a quad, closed, the surface's Euler characteristic) and
     ``summary`` (the command line's keys: holes, dropped_squares, valences, ...). Squares next
     to flipped triangles are left out as holes (complete is then False). tolerance: UV units,
-    how far a seam translation or a cone may be from the grid. ValueError when the map is not
+    how far a seam translation or a cone may be from the grid. fill_holes: fill the holes with
+    the grid's squares where their boundary allows (the CLI's --fill-holes; status "filled",
+    the inner vertices placed by averaging, ``vertex_face`` -1). ValueError when the map is not
     an integer-grid map."""
     V = _vertices(V)
     F = _faces(F)
     uv = _vertices(uv, "uv")
     fuv = _indices(fuv, "fuv")
     tolerance = _real_number(tolerance, "tolerance")
-    return _strictmin.quads(V, F, uv, fuv, tolerance)
+    if not isinstance(fill_holes, bool):
+        raise TypeError("fill_holes must be True or False")
+    return _strictmin.quads(V, F, uv, fuv, tolerance, fill_holes)
 
 
 def element_weights(V, F):

@@ -248,7 +248,9 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& o
 
 nlohmann::json quad_extraction_summary(const QuadExtraction& x) {
   nlohmann::json s;
-  s["status"] = x.complete ? "complete" : "holes";
+  s["status"] = !x.complete ? "holes" : x.filled_squares > 0 ? "filled" : "complete";
+  s["filled_holes"] = x.filled_holes;
+  s["filled_squares"] = x.filled_squares;
   s["quads"] = x.mesh.num_quads();
   s["vertices"] = x.mesh.num_vertices();
   s["edges"] = x.edges;

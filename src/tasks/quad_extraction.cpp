@@ -14,6 +14,7 @@
 #include "strictmin/field/surface_graph.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/param/topology.h"
+#include "tasks/quad_hole_filling.h"
 #include "tasks/square_flood.h"
 #include "tasks/uv_transitions.h"
 
@@ -150,7 +151,7 @@ void drop_overlapping_squares(Squares& squares) {
 }
 
 // One vertex per surface point, one row of UV per (vertex, integer UV) pair.
-QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
+QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vector<SurfacePointKey>& keys) {
   QuadMesh q;
   std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> vertex_of, uv_of;
   std::vector<Eigen::Vector3d> positions, barycentrics;
@@ -166,6 +167,7 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares) {
         Eigen::Vector3d p = Eigen::Vector3d::Zero();
         for (int i = 0; i < 3; ++i) p += c.barycentric(i) * map.V.row(map.F(c.face, i)).transpose();
         positions.push_back(p);
+        keys.push_back(c.key);
         barycentrics.push_back(c.barycentric);
         faces.push_back(c.face);
       }
@@ -290,12 +292,25 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   x.squares_not_covered_once = squares.not_covered_once;
   x.squares_overlapping = squares.overlapping;
   x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping;
-  x.mesh = assemble(map, squares.quads);
+  std::vector<SurfacePointKey> keys;  // each quad-mesh vertex's surface point
+  x.mesh = assemble(map, squares.quads, keys);
+  if (options.fill_holes) {
+    std::vector<int> cone_quarters(keys.size(), 0);
+    for (size_t v = 0; v < keys.size(); ++v)
+      if (keys[v].kind == SurfacePointKey::Vertex) cone_quarters[v] = quarters[keys[v].element];
+    const HoleFilling filling = fill_quad_holes(x.mesh, cone_quarters);
+    x.filled_holes = filling.filled_holes;
+    x.filled_squares = filling.filled_squares;
+  }
   check_topology(x);
   x.quality = quad_quality(x.mesh);
-  x.complete = x.dropped_squares == 0 && x.flipped_triangles == 0 && x.boundary_edges == 0 &&
-               x.non_manifold_edges == 0 && x.euler_characteristic == x.surface_euler_characteristic &&
-               std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area);
+  // Closed, manifold, the surface's topology, one quad per unit of UV area; with folds only
+  // when their holes were filled (a fold's squares can otherwise all be left out without a
+  // boundary: a fold inside one square's closure is not possible, but the check costs nothing).
+  x.complete = x.boundary_edges == 0 && x.non_manifold_edges == 0 &&
+               x.euler_characteristic == x.surface_euler_characteristic &&
+               std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area) &&
+               ((x.dropped_squares == 0 && x.flipped_triangles == 0) || x.filled_squares > 0);
   x.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return x;
 }

@@ -114,6 +114,18 @@ class Quads(CubeCase):
         V, _, faces = read_obj(self.out("quads.obj"))
         self.assertEqual(len(faces), s["quads"])
         self.assertLess(s["quads"], 96)
+        # --fill-holes: this hole is away from the cones, and is filled with the grid's squares
+        # (exit 0, status "filled"): the cube's 96 quads again.
+        summary = self.out("filled.json")
+        p = run("quads", folded, "-o", self.out("filled.obj"), "--fill-holes", "--summary", summary, check_code=0)
+        with open(summary) as f:
+            s2 = json.load(f)
+        self.assertTrue(s2["fill_holes"])
+        self.assertEqual(s2["status"], "filled")
+        self.assertEqual((s2["quads"], s2["holes"], s2["euler_characteristic"]), (96, 0, 2))
+        self.assertEqual(s2["filled_squares"] + s["quads"], s2["quads"])
+        self.assertIn("complete after filling", p.stderr)
+        self.assertEqual(len(read_obj(self.out("filled.obj"))[2]), 96)
 
     def assert_refused(self, args, words, outputs):
         p = run(*args, check_code=1)
@@ -140,6 +152,8 @@ class Quads(CubeCase):
         self.assert_refused(["gparam", self.cube, "-o", g, "--integer-grid", "--quad-mesh", self.out("q.ply")],
                             ["q.ply", ".obj only"], [g, self.out("q.ply")])
         self.assert_refused(["quads", self.out("map.obj"), "--tolerance", "0.5"], ["--tolerance"], [])
+        self.assert_refused(["gparam", self.cube, "-o", g, "--integer-grid", "--fill-holes"],
+                            ["--fill-holes", "--quad-mesh"], [g])
 
 
 if __name__ == "__main__":

@@ -66,6 +66,21 @@ def test_complete_quad_mesh(closed):
     np.testing.assert_allclose(P, q["V"], rtol=0, atol=1e-12)
 
 
+def test_fill_holes_matches_cli(tmp_path, closed):
+    mesh, V, F = closed
+    run_cli("gparam", mesh, "-o", tmp_path / "map.obj", "--integer-grid", "--quads", 3000, "--quiet")
+    run_cli("quads", tmp_path / "map.obj", "--fill-holes", "--summary", tmp_path / "s.json", "--quiet")
+    summary = json.loads((tmp_path / "s.json").read_text())
+    r = strictmin.gparam(V, F, quads=3000, integer_grid=True)
+    q = strictmin.quads(V, F, r.uv, r.fuv, fill_holes=True)
+    same_summary(q["summary"], {k: v for k, v in summary.items() if k not in ("input", "output")})
+    assert q["summary"]["fill_holes"] is True
+    filled = q["vertex_face"] < 0
+    assert filled.sum() == 0 or np.isnan(q["vertex_barycentric"][filled]).all()
+    with pytest.raises(TypeError, match="fill_holes"):
+        strictmin.quads(V, F, r.uv, r.fuv, fill_holes=1)
+
+
 def test_bad_input(closed):
     _, V, F = closed
     r = strictmin.gparam(V, F, quads=200, edge_length=None)

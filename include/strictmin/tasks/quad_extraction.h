@@ -29,6 +29,10 @@ struct QuadExtractionOptions {
   // UV units: how far a seam translation or a cone may be from the grid, and how close to a
   // vertex or an edge a grid point counts as on it.
   double tolerance = 1e-6;
+  // Fill each hole whose boundary unfolds into a simple loop with no cone on or inside it with
+  // the grid's squares inside the loop; their inner vertices are placed by averaging their grid
+  // neighbours, off the surface (vertex_face -1). Holes that do not qualify stay.
+  bool fill_holes = false;
   // Empty when the options are usable, else why not.
   std::string invalid_reason() const;
 };
@@ -38,7 +42,8 @@ struct QuadMesh {
   Eigen::MatrixXi Q;    // #quads by 4, counter-clockwise about the surface's outward normal
   Eigen::MatrixXd UV;   // integer UVs of the quads' corners, each quad in its own chart
   Eigen::MatrixXi QUV;  // #quads by 4 rows of UV
-  // Where each vertex lies: a triangle of the input and barycentric coordinates in it.
+  // Where each vertex lies: a triangle of the input and barycentric coordinates in it (-1 and
+  // NaN for the inner vertices of filled holes).
   Eigen::VectorXi vertex_face;
   Eigen::MatrixXd vertex_barycentric;  // #vertices by 3
 
@@ -61,8 +66,10 @@ QuadQuality quad_quality(const QuadMesh& quads);
 
 struct QuadExtraction {
   QuadMesh mesh;
-  // Closed, manifold, every unit square a quad, and the surface's Euler characteristic.
+  // Closed, manifold, the surface's Euler characteristic, one quad per unit of UV area, and
+  // either no square left out and no fold, or the holes filled (fill_holes).
   bool complete = false;
+  int filled_holes = 0, filled_squares = 0;  // fill_holes: the holes filled and their squares
   double uv_area = 0;          // the map's signed UV area: the number of squares when complete
   int flipped_triangles = 0;   // of the map: UV area <= 0
   int cones = 0;               // vertices of the map with a non-zero index
