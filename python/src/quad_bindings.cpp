@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "run_released.h"
 #include "report/summary.h"  // private (src/): the CLI and the Python module
 #include "strictmin/io/input_error.h"
 #include "strictmin/tasks/quad_extraction.h"
@@ -25,7 +26,8 @@ py::dict quads_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd&
   QuadExtractionOptions options;
   options.tolerance = tolerance;
   options.fill_holes = fill_holes;
-  const QuadExtraction x = extract_quads(map, options, "mesh");
+  QuadExtraction x;
+  run_released([&] { x = extract_quads(map, options, "mesh"); });  // Ctrl-C honoured, the GIL released
   nlohmann::json s = quad_extraction_summary(x);
   s["task"] = "quads";
   s["tolerance"] = tolerance;

@@ -14,6 +14,7 @@
 #include "strictmin/field/surface_graph.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/param/topology.h"
+#include "strictmin/solvers/interrupt.h"
 #include "tasks/quad_hole_filling.h"
 #include "tasks/square_flood.h"
 #include "tasks/uv_transitions.h"
@@ -101,7 +102,9 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   };
   for (int f = 0; f < graph.num_faces; ++f) {
     if (!(doubled_uv_area(map, f) > 0)) continue;
+    check_interrupt();  // solvers/interrupt.h: once per face (Ctrl-C, SIGTERM, Python's KeyboardInterrupt)
     for (const Eigen::Vector2d& c : centres_in_face(map, f, tolerance)) {
+      check_interrupt();
       if (started.count(start_key(f, c))) continue;
       const SquareFlood s = flooder.flood(f, c);
       for (const auto& [g, centre] : s.centres) started.insert(start_key(g, centre));

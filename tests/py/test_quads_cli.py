@@ -4,9 +4,11 @@ with flipped triangles (holes, exit 2, the quads kept written), and bad input (e
 message naming the problem, no output file). Run by ctest with STRICTMIN_CLI set."""
 import json
 import os
+import subprocess
+import time
 import unittest
 
-from cli_support import run
+from cli_support import CLI, run
 from test_gparam_cli import CubeCase, cube_obj, edge_aligned_field
 
 
@@ -126,6 +128,25 @@ class Quads(CubeCase):
         self.assertEqual(s2["filled_squares"] + s["quads"], s2["quads"])
         self.assertIn("complete after filling", p.stderr)
         self.assertEqual(len(read_obj(self.out("filled.obj"))[2]), 96)
+
+    def test_sigterm_stops_a_long_extraction(self):
+        # The cube's map scaled by 400: an integer-grid map of 96 x 400^2 = 1.5e7 squares, long
+        # enough to be stopped: exit 130, no output file (the extraction checks for interrupts).
+        self.grid_map()
+        with open(self.out("map.obj")) as f:
+            lines = f.read().split("\n")
+        scaled = []
+        for l in lines:
+            if l.startswith("vt "):
+                u, v = (float(x) for x in l.split()[1:3])
+                l = f"vt {u * 400!r} {v * 400!r}"
+            scaled.append(l)
+        big = self.write("big.obj", "\n".join(scaled))
+        p = subprocess.Popen([CLI, "quads", big, "-o", self.out("big_quads.obj")], stderr=subprocess.PIPE, text=True)
+        time.sleep(1.5)
+        p.terminate()
+        self.assertEqual(p.wait(timeout=60), 130, p.stderr.read())
+        self.assertFalse(os.path.exists(self.out("big_quads.obj")))
 
     def assert_refused(self, args, words, outputs):
         p = run(*args, check_code=1)
