@@ -335,3 +335,17 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   bad.tolerance = 0;
   expect_input_error([&] { extract_quads(grid.mapped, bad); }, {"tolerance"});
 }
+
+// The cube's map moved by large integers: the same 150 quads (the squares' coverage is
+// measured about each square's centre, so the UVs' magnitude does not eat its digits).
+TEST(QuadExtraction, LargeIntegerTranslationsChangeNothing) {
+  const GParamOutcome g = polycube_grid_map(make_cube_surface(3), 1.0);
+  for (double offset : {1e6, 1e7, 1e8}) {
+    Mesh m = g.mapped;
+    m.UV.rowwise() += Eigen::RowVector2d(offset, -offset);
+    const QuadExtraction x = extract_quads(m);
+    EXPECT_TRUE(x.complete) << "offset " << offset;
+    EXPECT_EQ(x.mesh.num_quads(), 150) << "offset " << offset;
+    EXPECT_EQ(x.squares_not_covered_once, 0) << "offset " << offset;
+  }
+}

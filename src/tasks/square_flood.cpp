@@ -37,13 +37,15 @@ bool meets_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
 }
 
 // The signed area of triangle (p0, p1, p2) inside the closed square of centre c
-// (Sutherland-Hodgman against the square's four sides, then the shoelace formula).
+// (Sutherland-Hodgman against the square's four sides, then the shoelace formula). Worked
+// about c: the shoelace's products of absolute UVs would lose the area's digits far from 0.
 double clipped_area(const std::array<Eigen::Vector2d, 3>& triangle, const Eigen::Vector2d& c) {
-  std::vector<Eigen::Vector2d> poly(triangle.begin(), triangle.end()), next;
+  std::vector<Eigen::Vector2d> poly, next;
+  for (const Eigen::Vector2d& p : triangle) poly.push_back(p - c);
   for (int side = 0; side < 4 && !poly.empty(); ++side) {
     const int axis = side / 2;
     const double sign = side % 2 == 0 ? 1.0 : -1.0;  // keep x >= lo, then x <= hi
-    const double bound = c(axis) - 0.5 * sign;
+    const double bound = -0.5 * sign;
     const auto inside = [&](const Eigen::Vector2d& p) { return sign * (p(axis) - bound) >= 0; };
     next.clear();
     for (size_t i = 0; i < poly.size(); ++i) {
