@@ -349,3 +349,28 @@ TEST(QuadExtraction, LargeIntegerTranslationsChangeNothing) {
     EXPECT_EQ(x.squares_not_covered_once, 0) << "offset " << offset;
   }
 }
+
+// A tetrahedron in one chart (no seams, its four vertices' UVs shared), one face flipped
+// under the other three: its signed UV area is 0 whatever the spike's height.
+Mesh spiked_tetrahedron(const Eigen::Matrix<double, 4, 2>& uv) {
+  Mesh m;
+  m.V.resize(4, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  m.F.resize(4, 3);
+  m.F << 0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3;
+  m.UV = uv;
+  m.FUV = m.F;
+  return m;
+}
+
+// UVs far from grid units are refused before any work, also when the triangles' signed
+// areas cancel (a double cover of a tall, thin spike of 1e9 rows) and when the UVs are so
+// large that a unit step is lost in their digits.
+TEST(QuadExtraction, SpikesAndHugeUvsAreRefusedQuickly) {
+  Eigen::Matrix<double, 4, 2> spike;
+  spike << 0.49, 0, 0.51, 0, 0.5, 1e9, 0.5, 5e8;
+  expect_input_error([&] { extract_quads(spiked_tetrahedron(spike), {}, "spike.obj"); }, {"spike.obj", "grid units"});
+  Eigen::Matrix<double, 4, 2> far;
+  far << 1e17, 0, 1e17 + 64, 0, 1e17 + 32, 64, 1e17 + 32, 16;
+  expect_input_error([&] { extract_quads(spiked_tetrahedron(far), {}, "far.obj"); }, {"far.obj", "grid units"});
+}
