@@ -140,6 +140,14 @@ class Quads(CubeCase):
         self.assert_refused(["gparam", self.cube, "-o", g, "--integer-grid", "--quad-mesh", self.out("q.ply")],
                             ["q.ply", ".obj only"], [g, self.out("q.ply")])
         self.assert_refused(["quads", self.out("map.obj"), "--tolerance", "0.5"], ["--tolerance"], [])
+        # One face without vt: the reader drops them all, and the message says why (also when quiet).
+        with open(self.out("map.obj")) as f:
+            lines = f.read().splitlines()
+        first = next(i for i, line in enumerate(lines) if line.startswith("f "))
+        lines[first] = "f " + " ".join(c.split("/")[0] for c in lines[first].split()[1:])
+        partial = self.write("partial.obj", "\n".join(lines) + "\n")
+        self.assert_refused(["quads", partial, "-o", q, "--summary", s, "--quiet"],
+                            ["partial.obj", "no per-corner UVs", "only", "faces have them"], [q, s])
 
 
 if __name__ == "__main__":
