@@ -374,3 +374,29 @@ TEST(QuadExtraction, SpikesAndHugeUvsAreRefusedQuickly) {
   far << 1e17, 0, 1e17 + 64, 0, 1e17 + 32, 64, 1e17 + 32, 16;
   expect_input_error([&] { extract_quads(spiked_tetrahedron(far), {}, "far.obj"); }, {"far.obj", "grid units"});
 }
+
+// A coarser tolerance keeps a complete map complete: a grid point a few tolerances from a
+// vertex, within the tolerance of several edges of the vertex's fan, is the same quad-mesh
+// vertex whichever square finds it (keyed in the triangle that holds it).
+TEST(QuadExtraction, CoarseTolerancesKeepTheQuadMeshClosed) {
+  const Mesh* m = shared_closed_mesh("fertility");
+  if (!m) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  GParamOptions o;
+  o.quads = 10000;
+  o.integer_grid = true;
+  o.grid_guide = GParamOptions::GridGuide::Linf;
+  o.solver.method = Method::Linf;
+  const GParamOutcome g = global_parametrize(*m, o);
+  ASSERT_EQ(g.measured.stats.flipped, 0);
+  const QuadExtraction fine = extract_quads(g.mapped);
+  ASSERT_TRUE(fine.complete);
+  for (double tolerance : {1e-3, 1e-2, 5e-2}) {
+    QuadExtractionOptions coarse;
+    coarse.tolerance = tolerance;
+    const QuadExtraction x = extract_quads(g.mapped, coarse);
+    EXPECT_TRUE(x.complete) << "tolerance " << tolerance;
+    EXPECT_EQ(x.boundary_edges, 0) << "tolerance " << tolerance;
+    EXPECT_EQ(x.mesh.num_quads(), fine.mesh.num_quads()) << "tolerance " << tolerance;
+    EXPECT_EQ(x.valences, fine.valences) << "tolerance " << tolerance;
+  }
+}
