@@ -9,6 +9,10 @@ std::string quad_extraction_phrase(const QuadExtraction& x) {
   std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
                      " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
   if (x.complete) return line + ", complete";
+  if (x.holes == 0)  // closed, yet not the surface: no squares at all, or a part of it missing
+    return line + ", incomplete: the surface's Euler characteristic is " + std::to_string(x.surface_euler_characteristic) +
+           ", the map's UV area " + std::to_string(std::llround(x.uv_area)) + ", " + std::to_string(x.flipped_triangles) +
+           " flipped triangles, " + std::to_string(x.dropped_squares) + " unit squares left out";
   return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
          " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
          std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +

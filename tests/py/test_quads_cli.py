@@ -115,6 +115,20 @@ class Quads(CubeCase):
         self.assertEqual(len(faces), s["quads"])
         self.assertLess(s["quads"], 96)
 
+    def test_a_collapsed_map_is_incomplete_without_holes(self):
+        # Every vt the same integer point: seamless and on the grid, every triangle of zero UV
+        # area, no square at all. Exit 2, and the message says why rather than "0 hole(s)".
+        self.grid_map()
+        with open(self.out("map.obj")) as f:
+            lines = ["vt 3 3" if l.startswith("vt ") else l for l in f.read().split("\n")]
+        collapsed = self.write("collapsed.obj", "\n".join(lines))
+        s, p = self.quads(collapsed, 2)
+        self.assertEqual((s["status"], s["quads"], s["holes"]), ("holes", 0, 0))
+        self.assertNotIn("0 hole(s)", p.stderr)
+        self.assertIn("incomplete", p.stderr)
+        self.assertIn("the surface's Euler characteristic is 2", p.stderr)
+        self.assertIn("flipped triangles", p.stderr)
+
     def assert_refused(self, args, words, outputs):
         p = run(*args, check_code=1)
         for w in words:
