@@ -15,6 +15,10 @@ std::string quad_extraction_phrase(const QuadExtraction& x) {
   if (x.filled_squares > 0)
     line += ", " + std::to_string(x.filled_holes) + " hole(s) filled with " + std::to_string(x.filled_squares) +
             " squares";
+  if (x.holes == 0)  // closed, yet not the surface: no squares at all, or a part of it missing
+    return line + ", incomplete: the surface's Euler characteristic is " + std::to_string(x.surface_euler_characteristic) +
+           ", the map's UV area " + std::to_string(std::llround(x.uv_area)) + ", " + std::to_string(x.flipped_triangles) +
+           " flipped triangles, " + std::to_string(x.dropped_squares) + " unit squares left out";
   return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
          " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
          std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +

@@ -9,7 +9,8 @@
 
 namespace strictmin::cli {
 
-// "N quads, M vertices, Euler characteristic X, complete" or the holes and why.
+// "N quads, M vertices, Euler characteristic X, complete", or the holes and why, or (closed but
+// incomplete: no squares, or a part missing) the surface's Euler characteristic and UV area.
 std::string quad_extraction_phrase(const QuadExtraction& x);
 
 struct QuadOutput {

@@ -30,7 +30,11 @@ int run_quads(const QuadsArgs& a) {
   options.fill_holes = a.fill_holes;
   std::vector<std::string> warnings;
   const Mesh map = read_mesh(a.map, &warnings);
-  for (const auto& w : warnings) progress(a.out, "warning: " + w);
+  for (const auto& w : warnings) {
+    if (!map.has_uv() && w.find("texture coordinates ignored") != std::string::npos)  // some faces without vt
+      throw InputError(a.map + ": the mesh has no per-corner UVs (" + w + ")");
+    progress(a.out, "warning: " + w);
+  }
   progress(a.out, "quads: " + std::to_string(map.num_elements()) + " triangles");
   const QuadExtraction x = extract_quads(map, options, a.map);
   if (!a.output.empty()) write_quad_obj(a.output, x.mesh);

@@ -382,3 +382,68 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   bad.tolerance = 0;
   expect_input_error([&] { extract_quads(grid.mapped, bad); }, {"tolerance"});
 }
+
+// The cube's map moved by large integers: the same 150 quads (the squares' coverage is
+// measured about each square's centre, so the UVs' magnitude does not eat its digits).
+TEST(QuadExtraction, LargeIntegerTranslationsChangeNothing) {
+  const GParamOutcome g = polycube_grid_map(make_cube_surface(3), 1.0);
+  for (double offset : {1e6, 1e7, 1e8}) {
+    Mesh m = g.mapped;
+    m.UV.rowwise() += Eigen::RowVector2d(offset, -offset);
+    const QuadExtraction x = extract_quads(m);
+    EXPECT_TRUE(x.complete) << "offset " << offset;
+    EXPECT_EQ(x.mesh.num_quads(), 150) << "offset " << offset;
+    EXPECT_EQ(x.squares_not_covered_once, 0) << "offset " << offset;
+  }
+}
+
+// A tetrahedron in one chart (no seams, its four vertices' UVs shared), one face flipped
+// under the other three: its signed UV area is 0 whatever the spike's height.
+Mesh spiked_tetrahedron(const Eigen::Matrix<double, 4, 2>& uv) {
+  Mesh m;
+  m.V.resize(4, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  m.F.resize(4, 3);
+  m.F << 0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3;
+  m.UV = uv;
+  m.FUV = m.F;
+  return m;
+}
+
+// UVs far from grid units are refused before any work, also when the triangles' signed
+// areas cancel (a double cover of a tall, thin spike of 1e9 rows) and when the UVs are so
+// large that a unit step is lost in their digits.
+TEST(QuadExtraction, SpikesAndHugeUvsAreRefusedQuickly) {
+  Eigen::Matrix<double, 4, 2> spike;
+  spike << 0.49, 0, 0.51, 0, 0.5, 1e9, 0.5, 5e8;
+  expect_input_error([&] { extract_quads(spiked_tetrahedron(spike), {}, "spike.obj"); }, {"spike.obj", "grid units"});
+  Eigen::Matrix<double, 4, 2> far;
+  far << 1e17, 0, 1e17 + 64, 0, 1e17 + 32, 64, 1e17 + 32, 16;
+  expect_input_error([&] { extract_quads(spiked_tetrahedron(far), {}, "far.obj"); }, {"far.obj", "grid units"});
+}
+
+// A coarser tolerance keeps a complete map complete: a grid point a few tolerances from a
+// vertex, within the tolerance of several edges of the vertex's fan, is the same quad-mesh
+// vertex whichever square finds it (keyed in the triangle that holds it).
+TEST(QuadExtraction, CoarseTolerancesKeepTheQuadMeshClosed) {
+  const Mesh* m = shared_closed_mesh("fertility");
+  if (!m) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  GParamOptions o;
+  o.quads = 10000;
+  o.integer_grid = true;
+  o.grid_guide = GParamOptions::GridGuide::Linf;
+  o.solver.method = Method::Linf;
+  const GParamOutcome g = global_parametrize(*m, o);
+  ASSERT_EQ(g.measured.stats.flipped, 0);
+  const QuadExtraction fine = extract_quads(g.mapped);
+  ASSERT_TRUE(fine.complete);
+  for (double tolerance : {1e-3, 1e-2, 5e-2}) {
+    QuadExtractionOptions coarse;
+    coarse.tolerance = tolerance;
+    const QuadExtraction x = extract_quads(g.mapped, coarse);
+    EXPECT_TRUE(x.complete) << "tolerance " << tolerance;
+    EXPECT_EQ(x.boundary_edges, 0) << "tolerance " << tolerance;
+    EXPECT_EQ(x.mesh.num_quads(), fine.mesh.num_quads()) << "tolerance " << tolerance;
+    EXPECT_EQ(x.valences, fine.valences) << "tolerance " << tolerance;
+  }
+}

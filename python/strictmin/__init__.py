@@ -394,7 +394,9 @@ def quads(V, F, uv, fuv, tolerance=1e-6, fill_holes=False):
     an integer-grid map."""
     V = _vertices(V)
     F = _faces(F)
-    uv = _vertices(uv, "uv")
+    uv = _real_array(uv, "uv")
+    if uv.ndim != 2 or uv.shape[1] != 2:
+        raise ValueError(f"uv must be #UV by 2, got shape {uv.shape}")
     fuv = _indices(fuv, "fuv")
     tolerance = _real_number(tolerance, "tolerance")
     if not isinstance(fill_holes, bool):

@@ -22,22 +22,41 @@
 namespace strictmin {
 namespace {
 
-// More unit squares than this, or triangles spanning more grid columns in all, are refused:
-// the UVs are then most likely not in grid units (and the work would not end).
-constexpr double kMaxSquares = 5e7, kMaxColumns = 2e8;
+std::string prefix(const std::string& source) { return source.empty() ? std::string("quads: ") : source + ": "; }
 
-// The grid columns the triangles span, added up (the enumeration of centres visits each).
-double uv_columns(const Mesh& map) {
-  double columns = 0;
+// More unit squares under the triangles of positive UV area than this, more grid cells under
+// their UV bounding boxes, or UVs further from 0, are refused: the UVs are then most likely
+// not in grid units (and the work would not end: beyond kMaxUv a unit step is lost in a
+// double's digits; 1e7 squares hold about 3 GB while they are flooded).
+constexpr double kMaxSquares = 1e7, kMaxCells = 4e8, kMaxUv = 1e9;
+
+// The work the extraction would do, added up over the triangles: the UV area of those of
+// positive area (the squares flooded) and the grid cells under each one's UV bounding box
+// (the enumeration of centres visits at most these), and the UVs' largest magnitude.
+struct UvExtent {
+  double positive_area = 0, cells = 0, max_uv = 0;
+};
+
+UvExtent uv_extent(const Mesh& map) {
+  UvExtent x;
   for (int f = 0; f < map.num_elements(); ++f) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (int i = 0; i < 3; ++i) lo = std::min(lo, map.UV(map.FUV(f, i), 0)), hi = std::max(hi, map.UV(map.FUV(f, i), 0));
-    columns += hi - lo + 1;
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = -lo;
+    for (int i = 0; i < 3; ++i) lo = lo.cwiseMin(corner_uv(map, f, i)), hi = hi.cwiseMax(corner_uv(map, f, i));
+    x.positive_area += std::max(0.0, doubled_uv_area(map, f) / 2);
+    x.cells += (hi.x() - lo.x() + 1) * (hi.y() - lo.y() + 1);
   }
-  return columns;
+  if (map.UV.size() > 0) x.max_uv = map.UV.cwiseAbs().maxCoeff();
+  return x;
 }
 
-std::string prefix(const std::string& source) { return source.empty() ? std::string("quads: ") : source + ": "; }
+void check_extent(const Mesh& map, const std::string& source) {
+  const UvExtent x = uv_extent(map);
+  if (x.positive_area > kMaxSquares || x.cells > kMaxCells || x.max_uv > kMaxUv)
+    throw InputError(prefix(source) + "the map's triangles cover " + std::to_string(std::llround(x.positive_area)) +
+                     " unit squares and their bounding boxes " + std::to_string(std::llround(x.cells)) +
+                     " grid cells, its UVs reach " + std::to_string(std::llround(x.max_uv)) +
+                     " (at most 1e7, 4e8 and 1e9): are the UVs in grid units?");
+}
 
 void check_map(const Mesh& map, const std::string& source) {
   if (map.element_type() != ElementType::Triangle || map.dim() != 3)
@@ -271,6 +290,7 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   const auto t0 = std::chrono::steady_clock::now();
   if (const std::string why = options.invalid_reason(); !why.empty()) throw InputError(prefix(source) + why);
   check_map(map, source);
+  check_extent(map, source);
   const SurfaceGraph graph = surface_graph(map, source);
   const std::vector<UvTransition> transitions = integer_uv_transitions(map, graph, options.tolerance, source);
   const std::vector<int> quarters = cones_on_the_grid(map, graph, options.tolerance, source);
@@ -283,10 +303,6 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
     x.uv_area += area2 / 2;
     if (!(area2 > 0)) ++x.flipped_triangles;
   }
-  if (x.uv_area > kMaxSquares || uv_columns(map) > kMaxColumns)
-    throw InputError(prefix(source) + "the map covers " + std::to_string(std::llround(x.uv_area)) +
-                     " unit squares and its triangles span " + std::to_string(std::llround(uv_columns(map))) +
-                     " grid columns (at most 5e7 and 2e8): are the UVs in grid units?");
 
   Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
   drop_overlapping_squares(squares);

@@ -37,13 +37,15 @@ bool meets_square(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
 }
 
 // The signed area of triangle (p0, p1, p2) inside the closed square of centre c
-// (Sutherland-Hodgman against the square's four sides, then the shoelace formula).
+// (Sutherland-Hodgman against the square's four sides, then the shoelace formula). Worked
+// about c: the shoelace's products of absolute UVs would lose the area's digits far from 0.
 double clipped_area(const std::array<Eigen::Vector2d, 3>& triangle, const Eigen::Vector2d& c) {
-  std::vector<Eigen::Vector2d> poly(triangle.begin(), triangle.end()), next;
+  std::vector<Eigen::Vector2d> poly, next;
+  for (const Eigen::Vector2d& p : triangle) poly.push_back(p - c);
   for (int side = 0; side < 4 && !poly.empty(); ++side) {
     const int axis = side / 2;
     const double sign = side % 2 == 0 ? 1.0 : -1.0;  // keep x >= lo, then x <= hi
-    const double bound = c(axis) - 0.5 * sign;
+    const double bound = -0.5 * sign;
     const auto inside = [&](const Eigen::Vector2d& p) { return sign * (p(axis) - bound) >= 0; };
     next.clear();
     for (size_t i = 0; i < poly.size(); ++i) {
@@ -174,36 +176,66 @@ SquareFlooder::Visit SquareFlooder::carried_across(int face, int side, const Vis
 // The square's corners (integer points) that lie in the closed face, each with its key.
 void SquareFlooder::find_corners(int face, const Visit& here, const Eigen::Vector2d& start_centre,
                                  std::array<bool, 4>& found, SquareFlood& out) const {
-  const auto t = face_uvs(map_, face);
   for (int k = 0; k < 4; ++k) {
     if (found[k]) continue;
     const Eigen::Vector2d p = corner_point(here, k);
     if (!uv_face_contains(map_, face, p, tolerance_)) continue;
     SquareCorner& c = out.corners[k];
-    c.face = face;
-    c.barycentric = barycentric(t, p);
     c.uv = start_centre + kCornerOffsets[k];
     found[k] = true;
-    int at_vertex = -1;
-    for (int i = 0; i < 3; ++i)
-      if ((t[i] - p).norm() <= tolerance_) at_vertex = i;
-    if (at_vertex >= 0) {
-      c.key = {SurfacePointKey::Vertex, map_.F(face, at_vertex), 0, 0};
-      c.barycentric = Eigen::Vector3d::Unit(at_vertex);
-      continue;
-    }
-    int on_side = -1;
-    double nearest = tolerance_;
-    for (int i = 0; i < 3; ++i)
-      if (std::abs(side_distance(t, i, p)) <= nearest) nearest = std::abs(side_distance(t, i, p)), on_side = i;
-    if (on_side < 0) {
-      c.key = key_at(p, SurfacePointKey::Face, face);
-      continue;
-    }
-    const int e = graph_.face_edges(face, on_side);
-    const bool face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == on_side;
-    c.key = key_at(face0 || !transitions_[e].known ? p : transitions_[e].to_face0(p), SurfacePointKey::Edge, e);
+    const auto [g, q] = holding_face(face, p);
+    key_corner(g, q, c);
   }
+}
+
+// The face that holds p (in face's chart) without tolerance, stepped to across the side p is
+// furthest beyond (its transition applied), at most a few steps and never into a flipped
+// face: a grid point a few tolerances from a vertex may be within the tolerance of several
+// triangles of its fan and of several of their sides, and is keyed where it lies, the same
+// from every square.
+std::pair<int, Eigen::Vector2d> SquareFlooder::holding_face(int face, Eigen::Vector2d p) const {
+  for (int step = 0, previous = -1; step < 8; ++step) {
+    const auto t = face_uvs(map_, face);
+    int beyond = -1;
+    double furthest = 0;
+    for (int i = 0; i < 3; ++i)
+      if (side_distance(t, i, p) < furthest) furthest = side_distance(t, i, p), beyond = i;
+    if (beyond < 0) break;
+    const int e = graph_.face_edges(face, beyond), h = graph_.neighbour(face, beyond);
+    if (!transitions_[e].known || h == previous || !(doubled_uv_area(map_, h) > 0)) break;
+    const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == beyond;
+    p = from_face0 ? transitions_[e].to_face1(p) : transitions_[e].to_face0(p);
+    previous = face;
+    face = h;
+  }
+  return {face, p};
+}
+
+// The key of grid point p of face's chart: a vertex of face within the tolerance, else a side
+// within the tolerance (the nearest), else the face.
+void SquareFlooder::key_corner(int face, const Eigen::Vector2d& p, SquareCorner& c) const {
+  const auto t = face_uvs(map_, face);
+  c.face = face;
+  c.barycentric = barycentric(t, p);
+  int at_vertex = -1;
+  for (int i = 0; i < 3; ++i)
+    if ((t[i] - p).norm() <= tolerance_) at_vertex = i;
+  if (at_vertex >= 0) {
+    c.key = {SurfacePointKey::Vertex, map_.F(face, at_vertex), 0, 0};
+    c.barycentric = Eigen::Vector3d::Unit(at_vertex);
+    return;
+  }
+  int on_side = -1;
+  double nearest = tolerance_;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(side_distance(t, i, p)) <= nearest) nearest = std::abs(side_distance(t, i, p)), on_side = i;
+  if (on_side < 0) {
+    c.key = key_at(p, SurfacePointKey::Face, face);
+    return;
+  }
+  const int e = graph_.face_edges(face, on_side);
+  const bool face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == on_side;
+  c.key = key_at(face0 || !transitions_[e].known ? p : transitions_[e].to_face0(p), SurfacePointKey::Edge, e);
 }
 
 Eigen::Vector2d SquareFlooder::corner_point(const Visit& here, int k) {

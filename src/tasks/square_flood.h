@@ -71,6 +71,8 @@ class SquareFlooder {
                           std::array<bool, 4>& found, SquareFlood& out);
   void find_corners(int face, const Visit& here, const Eigen::Vector2d& start_centre, std::array<bool, 4>& found,
                     SquareFlood& out) const;
+  std::pair<int, Eigen::Vector2d> holding_face(int face, Eigen::Vector2d p) const;
+  void key_corner(int face, const Eigen::Vector2d& p, SquareCorner& c) const;
 
   const Mesh& map_;
   const SurfaceGraph& graph_;

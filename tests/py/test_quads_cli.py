@@ -130,7 +130,7 @@ class Quads(CubeCase):
         self.assertEqual(len(read_obj(self.out("filled.obj"))[2]), 96)
 
     def test_sigterm_stops_a_long_extraction(self):
-        # The cube's map scaled by 400: an integer-grid map of 96 x 400^2 = 1.5e7 squares, long
+        # The cube's map scaled by 300: an integer-grid map of 96 x 300^2 = 8.6e6 squares, long
         # enough to be stopped: exit 130, no output file (the extraction checks for interrupts).
         self.grid_map()
         with open(self.out("map.obj")) as f:
@@ -139,7 +139,7 @@ class Quads(CubeCase):
         for l in lines:
             if l.startswith("vt "):
                 u, v = (float(x) for x in l.split()[1:3])
-                l = f"vt {u * 400!r} {v * 400!r}"
+                l = f"vt {u * 300!r} {v * 300!r}"
             scaled.append(l)
         big = self.write("big.obj", "\n".join(scaled))
         p = subprocess.Popen([CLI, "quads", big, "-o", self.out("big_quads.obj")], stderr=subprocess.PIPE, text=True)
@@ -147,6 +147,20 @@ class Quads(CubeCase):
         p.terminate()
         self.assertEqual(p.wait(timeout=60), 130, p.stderr.read())
         self.assertFalse(os.path.exists(self.out("big_quads.obj")))
+
+    def test_a_collapsed_map_is_incomplete_without_holes(self):
+        # Every vt the same integer point: seamless and on the grid, every triangle of zero UV
+        # area, no square at all. Exit 2, and the message says why rather than "0 hole(s)".
+        self.grid_map()
+        with open(self.out("map.obj")) as f:
+            lines = ["vt 3 3" if l.startswith("vt ") else l for l in f.read().split("\n")]
+        collapsed = self.write("collapsed.obj", "\n".join(lines))
+        s, p = self.quads(collapsed, 2)
+        self.assertEqual((s["status"], s["quads"], s["holes"]), ("holes", 0, 0))
+        self.assertNotIn("0 hole(s)", p.stderr)
+        self.assertIn("incomplete", p.stderr)
+        self.assertIn("the surface's Euler characteristic is 2", p.stderr)
+        self.assertIn("flipped triangles", p.stderr)
 
     def assert_refused(self, args, words, outputs):
         p = run(*args, check_code=1)
@@ -175,6 +189,14 @@ class Quads(CubeCase):
         self.assert_refused(["quads", self.out("map.obj"), "--tolerance", "0.5"], ["--tolerance"], [])
         self.assert_refused(["gparam", self.cube, "-o", g, "--integer-grid", "--fill-holes"],
                             ["--fill-holes", "--quad-mesh"], [g])
+        # One face without vt: the reader drops them all, and the message says why (also when quiet).
+        with open(self.out("map.obj")) as f:
+            lines = f.read().splitlines()
+        first = next(i for i, line in enumerate(lines) if line.startswith("f "))
+        lines[first] = "f " + " ".join(c.split("/")[0] for c in lines[first].split()[1:])
+        partial = self.write("partial.obj", "\n".join(lines) + "\n")
+        self.assert_refused(["quads", partial, "-o", q, "--summary", s, "--quiet"],
+                            ["partial.obj", "no per-corner UVs", "only", "faces have them"], [q, s])
 
 
 if __name__ == "__main__":

@@ -93,3 +93,6 @@ def test_bad_input(closed):
         strictmin.quads(V, F, g.uv, g.fuv, tolerance=0.5)
     with pytest.raises(TypeError, match="tolerance"):
         strictmin.quads(V, F, g.uv, g.fuv, tolerance="small")
+    for bad_uv in (g.uv[:, :1], g.uv.ravel(), np.c_[g.uv, np.zeros(len(g.uv))]):
+        with pytest.raises(ValueError, match=r"uv must be #UV by 2, got shape"):
+            strictmin.quads(V, F, bad_uv, g.fuv)

@@ -89,7 +89,9 @@ struct QuadExtraction {
 
 // Throws InputError (naming `source`) when the map has no per-corner UVs, is not one closed
 // manifold triangle surface, is not seamless, or is not an integer-grid map (a seam
-// translation or a cone off the grid), or when the options are invalid.
+// translation or a cone off the grid), when its UVs are far from grid units (more than 1e7
+// squares under its triangles, 4e8 grid cells under their UV bounding boxes, or a UV beyond
+// 1e9), or when the options are invalid.
 QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& options = {},
                              const std::string& source = "");
 
