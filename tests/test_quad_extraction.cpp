@@ -378,6 +378,19 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   huge.UV *= 1e5;
   expect_input_error([&] { extract_quads(huge, {}, "huge.obj"); }, {"huge.obj", "grid units"});
 
+  // Two cubes in one file: each surface is extracted on its own.
+  Mesh two = polycube_grid_map(cube, 1.0).mapped;
+  const int n = two.num_vertices(), m = two.num_elements(), u = static_cast<int>(two.UV.rows());
+  two.V.conservativeResize(2 * n, 3);
+  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(10, 0, 0);
+  two.F.conservativeResize(2 * m, 3);
+  two.F.bottomRows(m) = two.F.topRows(m).array() + n;
+  two.UV.conservativeResize(2 * u, 2);
+  two.UV.bottomRows(u) = two.UV.topRows(u);
+  two.FUV.conservativeResize(2 * m, 3);
+  two.FUV.bottomRows(m) = two.FUV.topRows(m).array() + u;
+  expect_input_error([&] { extract_quads(two, {}, "two.obj"); }, {"two.obj", "2 connected components", "quad extraction"});
+
   QuadExtractionOptions bad;
   bad.tolerance = 0;
   expect_input_error([&] { extract_quads(grid.mapped, bad); }, {"tolerance"});

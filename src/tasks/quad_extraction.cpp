@@ -69,6 +69,9 @@ void check_map(const Mesh& map, const std::string& source) {
       if (map.FUV(f, i) < 0 || map.FUV(f, i) >= map.UV.rows())
         throw InputError(prefix(source) + "face " + std::to_string(f) + " (0-based) has a UV index out of range");
   const SurfaceTopology t = surface_topology(map);
+  if (t.components != 1 && t.non_manifold_edge < 0 && t.non_manifold_vertex < 0)
+    throw InputError(prefix(source) + "the mesh has " + std::to_string(t.components) +
+                     " connected components; quad extraction takes one closed surface (extract each on its own)");
   if (!t.boundary_loops.empty())
     throw InputError(prefix(source) + "the surface has " + std::to_string(t.boundary_loops.size()) +
                      " boundary loop(s) (first at vertex " + std::to_string(t.boundary_loops.front().front()) +

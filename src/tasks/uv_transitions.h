@@ -28,8 +28,8 @@ inline Eigen::Vector2d corner_uv(const Mesh& map, int f, int corner) {
   return map.UV.row(map.FUV(f, corner)).transpose();
 }
 
-// Every edge's transition. Throws InputError (naming `source`, the edge's vertices, 1-based as
-// in OBJ) when the two sides of an edge are not related by a quarter turn (the map is not
+// Every edge's transition. Throws InputError (naming `source` and the edge's vertices,
+// 0-based) when the two sides of an edge are not related by a quarter turn (the map is not
 // seamless) or the translation is not integer within `tolerance` (not an integer-grid map).
 std::vector<UvTransition> integer_uv_transitions(const Mesh& map, const SurfaceGraph& graph, double tolerance,
                                                  const std::string& source);
