@@ -124,20 +124,21 @@ SquareFlood SquareFlooder::flood(int face, const Eigen::Vector2d& centre) {
   }
   for (int k = 0; k < 4; ++k)
     if (!found[k]) find_corner_nearby(k, queue, centre, found, out);
-  const bool corners_distinct = std::all_of(found.begin(), found.end(), [](bool b) { return b; }) &&
-                                [&] {
-                                  for (int i = 0; i < 4; ++i)
-                                    for (int j = i + 1; j < 4; ++j)
-                                      if (out.corners[i].key == out.corners[j].key) return false;
-                                  return true;
-                                }();
-  if (flips)
-    out.outcome = SquareFlood::Outcome::TouchesFlip;
-  else if (wraps_ || (std::all_of(found.begin(), found.end(), [](bool b) { return b; }) && !corners_distinct))
-    out.outcome = SquareFlood::Outcome::Wraps;
-  else if (!corners_distinct || std::abs(out.covered - 1) > std::max(1e-6, 100 * tolerance_))
-    out.outcome = SquareFlood::Outcome::NotCoveredOnce;
+  out.outcome = outcome_of(flips, std::all_of(found.begin(), found.end(), [](bool b) { return b; }), out);
   return out;
+}
+
+// What the flood found makes the square a quad unless it touched a fold, came back to a face in
+// another chart or has two corners at one surface point (it wraps onto itself), or misses a
+// corner or is not covered exactly once.
+SquareFlood::Outcome SquareFlooder::outcome_of(bool flips, bool all_corners_found, const SquareFlood& s) const {
+  bool distinct = all_corners_found;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) distinct = distinct && !(s.corners[i].key == s.corners[j].key);
+  if (flips) return SquareFlood::Outcome::TouchesFlip;
+  if (wraps_ || (all_corners_found && !distinct)) return SquareFlood::Outcome::Wraps;
+  if (!distinct || std::abs(s.covered - 1) > std::max(1e-6, 100 * tolerance_)) return SquareFlood::Outcome::NotCoveredOnce;
+  return SquareFlood::Outcome::Quad;
 }
 
 // Crosses side `side` of face when it runs through the square or along one of its sides (so

@@ -66,6 +66,7 @@ class SquareFlooder {
   };
   bool cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue);
   Visit carried_across(int face, int side, const Visit& here) const;
+  SquareFlood::Outcome outcome_of(bool flips, bool all_corners_found, const SquareFlood& s) const;
   static Eigen::Vector2d corner_point(const Visit& here, int k);
   void find_corner_nearby(int k, const std::vector<int>& square_faces, const Eigen::Vector2d& start_centre,
                           std::array<bool, 4>& found, SquareFlood& out);
