@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -31,6 +32,22 @@ GParamOutcome polycube_grid_map(const Mesh& mesh, double h) {
   o.edge_length = h;
   o.integer_grid = true;
   return global_parametrize(mesh, o);
+}
+
+// Fertility (genus 4) at 10000 quads under the L-infinity guide and method: a flip-free
+// integer-grid map, made once for the tests that use it; null without the shared data.
+const GParamOutcome* fertility_on_a_fine_grid() {
+  static const std::optional<GParamOutcome> map = []() -> std::optional<GParamOutcome> {
+    const Mesh* m = shared_closed_mesh("fertility");
+    if (!m) return std::nullopt;
+    GParamOptions o;
+    o.quads = 10000;
+    o.integer_grid = true;
+    o.grid_guide = GParamOptions::GridGuide::Linf;
+    o.solver.method = Method::Linf;
+    return global_parametrize(*m, o);
+  }();
+  return map ? &*map : nullptr;
 }
 
 // Every quad of side h, square (its diagonals sqrt(2) h), with its vertices at integer
@@ -290,14 +307,9 @@ TEST(QuadExtraction, RelabellingChangesNothing) {
 // Euler characteristic -6, one vertex of valence 3 per cone of index 1/4 and of valence 5
 // per cone of index -1/4, one quad per unit of UV area, sides near h.
 TEST(QuadExtraction, FertilityOnAFineGridIsComplete) {
-  const Mesh* m = shared_closed_mesh("fertility");
-  if (!m) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
-  GParamOptions o;
-  o.quads = 10000;
-  o.integer_grid = true;
-  o.grid_guide = GParamOptions::GridGuide::Linf;
-  o.solver.method = Method::Linf;
-  const GParamOutcome g = global_parametrize(*m, o);
+  const GParamOutcome* fine = fertility_on_a_fine_grid();
+  if (!fine) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  const GParamOutcome& g = *fine;
   ASSERT_EQ(g.measured.stats.flipped, 0);
   const QuadExtraction x = extract_quads(g.mapped);
   EXPECT_TRUE(x.complete);
@@ -439,14 +451,9 @@ TEST(QuadExtraction, SpikesAndHugeUvsAreRefusedQuickly) {
 // vertex, within the tolerance of several edges of the vertex's fan, is the same quad-mesh
 // vertex whichever square finds it (keyed in the triangle that holds it).
 TEST(QuadExtraction, CoarseTolerancesKeepTheQuadMeshClosed) {
-  const Mesh* m = shared_closed_mesh("fertility");
-  if (!m) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
-  GParamOptions o;
-  o.quads = 10000;
-  o.integer_grid = true;
-  o.grid_guide = GParamOptions::GridGuide::Linf;
-  o.solver.method = Method::Linf;
-  const GParamOutcome g = global_parametrize(*m, o);
+  const GParamOutcome* fine = fertility_on_a_fine_grid();
+  if (!fine) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  const GParamOutcome& g = *fine;
   ASSERT_EQ(g.measured.stats.flipped, 0);
   const QuadExtraction fine = extract_quads(g.mapped);
   ASSERT_TRUE(fine.complete);
