@@ -451,9 +451,9 @@ TEST(QuadExtraction, SpikesAndHugeUvsAreRefusedQuickly) {
 // vertex, within the tolerance of several edges of the vertex's fan, is the same quad-mesh
 // vertex whichever square finds it (keyed in the triangle that holds it).
 TEST(QuadExtraction, CoarseTolerancesKeepTheQuadMeshClosed) {
-  const GParamOutcome* fine = fertility_on_a_fine_grid();
-  if (!fine) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
-  const GParamOutcome& g = *fine;
+  const GParamOutcome* map = fertility_on_a_fine_grid();
+  if (!map) GTEST_SKIP() << "../shared/data/closed/fertility.obj not available";
+  const GParamOutcome& g = *map;
   ASSERT_EQ(g.measured.stats.flipped, 0);
   const QuadExtraction fine = extract_quads(g.mapped);
   ASSERT_TRUE(fine.complete);
