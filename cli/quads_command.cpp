@@ -24,7 +24,6 @@ int run_quads(const QuadsArgs& a) {
   check_run_outputs(a.out, {{"--output", a.output}}, "", {{"the map", a.map}});
   if (!a.output.empty() && lowercase_extension(a.output) != ".obj")
     throw InputError("--output " + a.output + ": the quad mesh is written as .obj only");
-  if (!a.out.distortion.empty()) throw InputError("--distortion does not apply to quads (no distortion is measured)");
   QuadExtractionOptions options;
   options.tolerance = a.tolerance;
   options.fill_holes = a.fill_holes;
@@ -70,6 +69,7 @@ void add_quads_command(CLI::App& app, int& exit_code) {
                 "into a simple loop with no cone on or in it: its inner vertices are placed by averaging, off the "
                 "surface (status 'filled')");
   add_output_options(*cmd, args->out);
+  cmd->remove_option(cmd->get_option("--distortion"));  // nothing is measured per triangle
   cmd->callback([args, &exit_code] { exit_code = run_quads(*args); });
 }
 
