@@ -37,7 +37,7 @@ QuadOutput write_quad_mesh(const Mesh& map, const std::string& path, const std::
     return out;
   }
   if (!path.empty()) write_quad_obj(path, x.mesh);
-  out.summary = quad_extraction_summary(x);
+  out.summary = quad_extraction_summary(x, options);
   out.summary["file"] = path;
   out.complete = x.complete;
   out.mesh = std::move(x.mesh);

@@ -37,12 +37,10 @@ int run_quads(const QuadsArgs& a) {
   progress(a.out, "quads: " + std::to_string(map.num_elements()) + " triangles");
   const QuadExtraction x = extract_quads(map, options, a.map);
   if (!a.output.empty()) write_quad_obj(a.output, x.mesh);
-  nlohmann::json s = quad_extraction_summary(x);
+  nlohmann::json s = quad_extraction_summary(x, options);
   s["task"] = "quads";
   s["input"] = a.map;
   s["output"] = a.output;
-  s["tolerance"] = a.tolerance;
-  s["fill_holes"] = a.fill_holes;
   add_provenance_summary(s);
   write_outputs(a.out, s, Eigen::VectorXd());
   progress(a.out, "quads: " + quad_extraction_phrase(x));

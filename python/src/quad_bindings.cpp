@@ -28,10 +28,8 @@ py::dict quads_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd&
   options.fill_holes = fill_holes;
   QuadExtraction x;
   run_released([&] { x = extract_quads(map, options, "mesh"); });  // Ctrl-C honoured, the GIL released
-  nlohmann::json s = quad_extraction_summary(x);
+  nlohmann::json s = quad_extraction_summary(x, options);
   s["task"] = "quads";
-  s["tolerance"] = tolerance;
-  s["fill_holes"] = fill_holes;
   add_provenance_summary(s);
   py::dict out;
   out["V"] = RowMatrixXd(x.mesh.V);

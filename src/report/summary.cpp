@@ -246,8 +246,10 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& o
   return j;
 }
 
-nlohmann::json quad_extraction_summary(const QuadExtraction& x) {
+nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtractionOptions& options) {
   nlohmann::json s;
+  s["tolerance"] = options.tolerance;
+  s["fill_holes"] = options.fill_holes;
   s["status"] = !x.complete ? "holes" : x.filled_squares > 0 ? "filled" : "complete";
   s["filled_holes"] = x.filled_holes;
   s["filled_squares"] = x.filled_squares;

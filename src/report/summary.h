@@ -68,10 +68,10 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& options, co
 // A quad extraction (strictmin quads, gparam --quad-mesh): status ("complete" or "holes"),
 // quads, vertices, edges, uv_area, flipped_triangles, cones, dropped_squares and why,
 // boundary_edges, holes, non_manifold_edges, euler_characteristic,
-// surface_euler_characteristic, valences ({"3": count, ...}), irregular_vertices, the quads'
+// surface_euler_characteristic, tolerance, fill_holes, valences ({"3": count, ...}), irregular_vertices, the quads'
 // quality (min_angle_deg, max_angle_deg, min_scaled_jacobian, min_side, max_side, mean_side),
 // time_s.
-nlohmann::json quad_extraction_summary(const QuadExtraction& x);
+nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtractionOptions& options);
 
 // interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
 // lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.

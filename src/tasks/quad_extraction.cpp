@@ -141,8 +141,6 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   return out;
 }
 
-std::uint64_t directed_edge(int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); }
-
 // Drops the squares that share a directed edge with another square (both run along it the
 // same way: they overlap, as next to a fold of the map, where the surface is covered twice
 // by triangles that are not flipped) and counts them in `overlapping`. A square found twice
@@ -227,11 +225,10 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vect
 void check_topology(QuadExtraction& x) {
   const QuadMesh& q = x.mesh;
   std::unordered_map<std::uint64_t, int> directed;
-  const auto edge_key = directed_edge;
   std::vector<int> valence(q.num_vertices(), 0);
   for (int i = 0; i < q.num_quads(); ++i)
     for (int k = 0; k < 4; ++k) {
-      ++directed[edge_key(q.Q(i, k), q.Q(i, (k + 1) % 4))];
+      ++directed[directed_edge(q.Q(i, k), q.Q(i, (k + 1) % 4))];
       ++valence[q.Q(i, k)];
     }
   UnionFind boundary(q.num_vertices());
@@ -240,7 +237,7 @@ void check_topology(QuadExtraction& x) {
   for (const auto& [key, count] : directed) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
     if (count > 1) ++x.non_manifold_edges;
-    if (directed.count(edge_key(b, a))) {
+    if (directed.count(directed_edge(b, a))) {
       ++undirected_twice;
       continue;
     }
@@ -326,9 +323,8 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   }
   check_topology(x);
   x.quality = quad_quality(x.mesh);
-  // Closed, manifold, the surface's topology, one quad per unit of UV area; with folds only
-  // when their holes were filled (a fold's squares can otherwise all be left out without a
-  // boundary: a fold inside one square's closure is not possible, but the check costs nothing).
+  // Closed, manifold, the surface's topology, one quad per unit of UV area, and no square left
+  // out or fold unless holes were filled (then the status says "filled").
   x.complete = x.boundary_edges == 0 && x.non_manifold_edges == 0 &&
                x.euler_characteristic == x.surface_euler_characteristic &&
                std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area) &&

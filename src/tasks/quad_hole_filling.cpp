@@ -22,15 +22,13 @@ Point rotated(const Point& p, int quarters) {
   }
 }
 
-std::uint64_t directed(int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); }
-
 class Filler {
  public:
   Filler(QuadMesh& q, const std::vector<int>& cone_quarters)
       : q_(q), cone_quarters_(cone_quarters), valence_(q.num_vertices(), 0) {
     for (int i = 0; i < q.num_quads(); ++i)
       for (int k = 0; k < 4; ++k) {
-        owner_[directed(q.Q(i, k), q.Q(i, (k + 1) % 4))] = {i, k};
+        owner_[directed_edge(q.Q(i, k), q.Q(i, (k + 1) % 4))] = i;
         ++valence_[q.Q(i, k)];
       }
   }
@@ -38,12 +36,10 @@ class Filler {
   HoleFilling run();
 
  private:
-  struct Corner {
-    int quad = -1, k = -1;
-  };
-  // A hole edge runs from `from` to `to`, the reverse of quad's edge k (to -> from).
+  // A hole edge runs from `from` to `to`, the reverse of one of quad's edges (to -> from); fan:
+  // the kept quads around `to` from quad to the next hole edge's quad.
   struct HoleEdge {
-    int from = -1, to = -1, quad = -1;
+    int from = -1, to = -1, quad = -1, fan = 0;
   };
 
   int corner_of(int quad, int vertex) const {
@@ -51,15 +47,14 @@ class Filler {
       if (q_.Q(quad, k) == vertex) return k;
     return -1;
   }
-  bool is_boundary(int a, int b) const { return !owner_.count(directed(b, a)); }
-  int fan_size(const HoleEdge& e) const;
-  std::optional<HoleEdge> next_hole_edge(const HoleEdge& e) const;
+  bool is_boundary(int a, int b) const { return !owner_.count(directed_edge(b, a)); }
+  std::optional<HoleEdge> turn_to_next(HoleEdge& e) const;
   bool fill_loop(const std::vector<HoleEdge>& loop, HoleFilling& out);
 
   QuadMesh& q_;
   const std::vector<int>& cone_quarters_;
   std::vector<int> valence_;  // kept quads at each vertex
-  std::unordered_map<std::uint64_t, Corner> owner_;
+  std::unordered_map<std::uint64_t, int> owner_;  // directed edge -> its quad
   // Added by the filling (appended to q_ at the end).
   std::vector<Eigen::Vector3d> new_vertices_;
   std::vector<std::array<int, 4>> new_quads_;
@@ -82,7 +77,7 @@ bool Filler::fill_loop(const std::vector<HoleEdge>& loop, HoleFilling& out) {
     polygon[t] = at;
     if (!on_loop.emplace(std::make_pair(at.x(), at.y()), loop[t].from).second) return false;  // not simple
     at += step;
-    const int v = loop[t].to, fan = fan_size(loop[t]);
+    const int v = loop[t].to, fan = loop[t].fan;
     if (fan != valence_[v]) return false;  // v's quads make more than one fan (holes meet there)
     const int hole_quarters = 4 - cone_quarters_[v] - fan;
     if (hole_quarters < 1) return false;
@@ -154,28 +149,16 @@ bool Filler::fill_loop(const std::vector<HoleEdge>& loop, HoleFilling& out) {
   return true;
 }
 
-// The kept quads turned through from e's quad around e.to to the next hole edge's quad.
-int Filler::fan_size(const HoleEdge& e) const {
-  const int v = e.to;
-  int c = e.quad;
-  for (int quads = 1; quads <= 64; ++quads) {
-    const int x = q_.Q(c, (corner_of(c, v) + 3) % 4);
-    if (is_boundary(x, v)) return quads;
-    c = owner_.at(directed(v, x)).quad;
-  }
-  return -1;
-}
-
 // The hole edge after e: turning around e.to from e's quad through the kept quads to the
 // first edge into e.to on the boundary (where two holes touch at a vertex, this picks the
-// one of e's hole). None when the turn does not end.
-std::optional<Filler::HoleEdge> Filler::next_hole_edge(const HoleEdge& e) const {
+// one of e's hole); e.fan gets the quads turned through. None when the turn does not end.
+std::optional<Filler::HoleEdge> Filler::turn_to_next(HoleEdge& e) const {
   const int v = e.to;
   int c = e.quad;
-  for (int steps = 0; steps < 64; ++steps) {
+  for (e.fan = 1; e.fan <= 64; ++e.fan) {
     const int x = q_.Q(c, (corner_of(c, v) + 3) % 4);  // the edge x -> v
-    if (is_boundary(x, v)) return HoleEdge{v, x, c};
-    c = owner_.at(directed(v, x)).quad;
+    if (is_boundary(x, v)) return HoleEdge{v, x, c, 0};
+    c = owner_.at(directed_edge(v, x));
   }
   return std::nullopt;
 }
@@ -183,21 +166,23 @@ std::optional<Filler::HoleEdge> Filler::next_hole_edge(const HoleEdge& e) const 
 HoleFilling Filler::run() {
   HoleFilling out;
   std::vector<HoleEdge> hole_edges;
-  for (const auto& [key, c] : owner_) {
+  for (const auto& [key, quad] : owner_) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (is_boundary(a, b)) hole_edges.push_back({b, a, c.quad});
+    if (is_boundary(a, b)) hole_edges.push_back({b, a, quad, 0});
   }
   std::unordered_map<std::uint64_t, char> used;
   for (const HoleEdge& first : hole_edges) {
-    if (used[directed(first.from, first.to)]) continue;
+    if (used[directed_edge(first.from, first.to)]) continue;
     std::vector<HoleEdge> loop;
     bool closed = false;
-    for (std::optional<HoleEdge> e = first; e && !used[directed(e->from, e->to)]; e = next_hole_edge(*e)) {
-      used[directed(e->from, e->to)] = 1;
+    for (std::optional<HoleEdge> e = first; e && !used[directed_edge(e->from, e->to)];) {
+      used[directed_edge(e->from, e->to)] = 1;
+      const std::optional<HoleEdge> next = turn_to_next(*e);
       loop.push_back(*e);
-      closed = next_hole_edge(*e) && next_hole_edge(*e)->from == first.from && next_hole_edge(*e)->to == first.to;
+      closed = next && next->from == first.from && next->to == first.to;
+      e = next;
     }
-    if (!(closed && fill_loop(loop, out))) ++out.unfilled_holes;
+    if (closed) fill_loop(loop, out);
   }
   // Append what was added.
   const int n0 = q_.num_vertices(), m0 = q_.num_quads(), u0 = static_cast<int>(q_.UV.rows());

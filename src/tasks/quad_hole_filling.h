@@ -7,6 +7,7 @@
 // counter-clockwise polygon, the unit squares inside it are the hole's quads: their corners on
 // the loop are the loop's vertices, the grid points inside are new vertices placed by averaging
 // their grid neighbours (the loop held), off the surface.
+#include <cstdint>
 #include <vector>
 
 #include "strictmin/tasks/quad_extraction.h"
@@ -14,8 +15,13 @@
 namespace strictmin {
 
 struct HoleFilling {
-  int filled_holes = 0, filled_squares = 0, unfilled_holes = 0;
+  int filled_holes = 0, filled_squares = 0;
 };
+
+// A directed edge a -> b of a quad mesh as one key.
+inline std::uint64_t directed_edge(int a, int b) {
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
 
 // cone_quarters: per vertex of q, its cone index in quarters (0 when regular). Adds the filled
 // quads, vertices (vertex_face -1, barycentric NaN) and UVs (in each hole's own frame) to q.

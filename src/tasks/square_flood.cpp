@@ -120,7 +120,8 @@ SquareFlood SquareFlooder::flood(int face, const Eigen::Vector2d& centre) {
     out.covered += clipped_area(face_uvs(map_, g), here.centre);
     if (uv_face_contains(map_, g, here.centre, tolerance_)) out.centres.emplace_back(g, here.centre);
     find_corners(g, here, centre, found, out);
-    for (int side = 0; side < 3; ++side) flips = !cross_to_neighbour(g, side, here, queue) || flips;
+    const auto t = face_uvs(map_, g);
+    for (int side = 0; side < 3; ++side) flips = !cross_to_neighbour(g, side, t, here, queue) || flips;
   }
   for (int k = 0; k < 4; ++k)
     if (!found[k]) find_corner_nearby(k, queue, centre, found, out);
@@ -145,8 +146,8 @@ SquareFlood::Outcome SquareFlooder::outcome_of(bool flips, bool all_corners_foun
 // that a fold hanging from a side of the square is reached: a flipped triangle next to the
 // square, across an edge on the grid line, leaves the square out); false when the edge is
 // degenerate in UV (its transition unknown). A face reached again in another chart sets wraps_.
-bool SquareFlooder::cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue) {
-  const auto t = face_uvs(map_, face);
+bool SquareFlooder::cross_to_neighbour(int face, int side, const std::array<Eigen::Vector2d, 3>& t, const Visit& here,
+                                       std::vector<int>& queue) {
   if (!meets_square(t[side], t[(side + 1) % 3], here.centre, tolerance_)) return true;
   const int e = graph_.face_edges(face, side), h = graph_.neighbour(face, side);
   if (!transitions_[e].known) return false;
@@ -161,16 +162,25 @@ bool SquareFlooder::cross_to_neighbour(int face, int side, const Visit& here, st
   return true;
 }
 
+// Whether side `side` of face is its edge's face-0 side (uv there = R uv(face 1) + t).
+bool SquareFlooder::is_face0_side(int face, int side) const {
+  const int e = graph_.face_edges(face, side);
+  return graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == side;
+}
+
+// Point p of face's chart in the chart of the face across side `side`.
+Eigen::Vector2d SquareFlooder::across(int face, int side, const Eigen::Vector2d& p) const {
+  const UvTransition& T = transitions_[graph_.face_edges(face, side)];
+  return is_face0_side(face, side) ? T.to_face1(p) : T.to_face0(p);
+}
+
 // The square as seen from the face across side `side` of `face` (its transition applied).
 SquareFlooder::Visit SquareFlooder::carried_across(int face, int side, const Visit& here) const {
-  const int e = graph_.face_edges(face, side);
-  const UvTransition& T = transitions_[e];
-  const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == side;
-  const Eigen::Matrix2d R = T.rotation();
+  const Eigen::Matrix2d R = transitions_[graph_.face_edges(face, side)].rotation();
   Visit v;
   v.stamp = stamp_;
-  v.centre = from_face0 ? T.to_face1(here.centre) : T.to_face0(here.centre);
-  v.frame = from_face0 ? Eigen::Matrix2d(R.transpose() * here.frame) : Eigen::Matrix2d(R * here.frame);
+  v.centre = across(face, side, here.centre);
+  v.frame = is_face0_side(face, side) ? Eigen::Matrix2d(R.transpose() * here.frame) : Eigen::Matrix2d(R * here.frame);
   return v;
 }
 
@@ -204,8 +214,7 @@ std::pair<int, Eigen::Vector2d> SquareFlooder::holding_face(int face, Eigen::Vec
     if (beyond < 0) break;
     const int e = graph_.face_edges(face, beyond), h = graph_.neighbour(face, beyond);
     if (!transitions_[e].known || h == previous || !(doubled_uv_area(map_, h) > 0)) break;
-    const bool from_face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == beyond;
-    p = from_face0 ? transitions_[e].to_face1(p) : transitions_[e].to_face0(p);
+    p = across(face, beyond, p);
     previous = face;
     face = h;
   }
@@ -235,8 +244,8 @@ void SquareFlooder::key_corner(int face, const Eigen::Vector2d& p, SquareCorner&
     return;
   }
   const int e = graph_.face_edges(face, on_side);
-  const bool face0 = graph_.edge_faces(e, 0) == face && graph_.edge_sides(e, 0) == on_side;
-  c.key = key_at(face0 || !transitions_[e].known ? p : transitions_[e].to_face0(p), SurfacePointKey::Edge, e);
+  const bool keep = is_face0_side(face, on_side) || !transitions_[e].known;  // keyed in face 0's chart
+  c.key = key_at(keep ? p : across(face, on_side, p), SurfacePointKey::Edge, e);
 }
 
 Eigen::Vector2d SquareFlooder::corner_point(const Visit& here, int k) {

@@ -64,7 +64,10 @@ class SquareFlooder {
     Eigen::Vector2d centre;
     Eigen::Matrix2d frame;
   };
-  bool cross_to_neighbour(int face, int side, const Visit& here, std::vector<int>& queue);
+  bool cross_to_neighbour(int face, int side, const std::array<Eigen::Vector2d, 3>& t, const Visit& here,
+                          std::vector<int>& queue);
+  bool is_face0_side(int face, int side) const;
+  Eigen::Vector2d across(int face, int side, const Eigen::Vector2d& p) const;
   Visit carried_across(int face, int side, const Visit& here) const;
   SquareFlood::Outcome outcome_of(bool flips, bool all_corners_found, const SquareFlood& s) const;
   static Eigen::Vector2d corner_point(const Visit& here, int k);
