@@ -66,17 +66,39 @@ def test_complete_quad_mesh(closed):
     np.testing.assert_allclose(P, q["V"], rtol=0, atol=1e-12)
 
 
+def folded(V, F, uv, fuv):
+    """The map with one vertex away from the seams (it and its neighbours have one uv each)
+    moved by more than a grid unit, for each such vertex in turn: maps with a fold."""
+    uses, neighbours = {}, {}
+    for f in range(len(F)):
+        for k in range(3):
+            uses.setdefault(F[f, k], set()).add(fuv[f, k])
+            neighbours.setdefault(F[f, k], set()).update(F[f])
+    for v in sorted(uses):
+        if all(len(uses[x]) == 1 for x in neighbours[v]):
+            moved = uv.copy()
+            moved[next(iter(uses[v]))] += [1.7, 0.9]
+            yield moved
+
+
 def test_fill_holes_matches_cli(tmp_path, closed):
-    mesh, V, F = closed
-    run_cli("gparam", mesh, "-o", tmp_path / "map.obj", "--integer-grid", "--quads", 3000, "--quiet")
-    run_cli("quads", tmp_path / "map.obj", "--fill-holes", "--summary", tmp_path / "s.json", "--quiet")
-    summary = json.loads((tmp_path / "s.json").read_text())
+    _, V, F = closed
     r = strictmin.gparam(V, F, quads=3000, integer_grid=True)
-    q = strictmin.quads(V, F, r.uv, r.fuv, fill_holes=True)
+    # The first fold whose hole can be filled (no cone inside or on it).
+    uv, q = next((uv, q) for uv in folded(V, F, r.uv, r.fuv)
+                 for q in [strictmin.quads(V, F, uv, r.fuv, fill_holes=True)] if q["summary"]["status"] == "filled")
+    assert q["summary"]["fill_holes"] is True and q["complete"]
+    assert q["summary"]["filled_squares"] >= 1 and q["summary"]["holes"] == 0
+    assert len(q["Q"]) == round(q["summary"]["uv_area"])
+    filled = q["vertex_face"] < 0  # a hole's inner grid points, if it has any: off the surface
+    assert np.isnan(q["vertex_barycentric"][filled]).all()
+    # The same map through the command line: the same summary.
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in V] + [f"vt {a!r} {b!r}" for a, b in uv]
+    lines += ["f " + " ".join(f"{v + 1}/{t + 1}" for v, t in zip(F[f], r.fuv[f])) for f in range(len(F))]
+    (tmp_path / "folded.obj").write_text("\n".join(lines) + "\n")
+    run_cli("quads", tmp_path / "folded.obj", "--fill-holes", "--summary", tmp_path / "s.json", "--quiet")
+    summary = json.loads((tmp_path / "s.json").read_text())
     same_summary(q["summary"], {k: v for k, v in summary.items() if k not in ("input", "output")})
-    assert q["summary"]["fill_holes"] is True
-    filled = q["vertex_face"] < 0
-    assert filled.sum() == 0 or np.isnan(q["vertex_barycentric"][filled]).all()
     with pytest.raises(TypeError, match="fill_holes"):
         strictmin.quads(V, F, r.uv, r.fuv, fill_holes=1)
 
