@@ -8,7 +8,10 @@
 //   bench_table1 --field unit ...          (the unit field, --field unit, instead of the smoothest)
 //   bench_table1 --parallel ...            (the field made parallel with its singularities, --parallel)
 //
-// Without meshes: every .obj in ../shared/data/closed (skips with a message when absent).
+// Without meshes: every .obj in ../shared/data/closed, then the disks that stand in for the
+// paper's hand, fish, dragon and lion rows (../shared/data/disk: parametrized with their
+// boundary free, docs/gparam.md "Surfaces with boundary"); skips with a message when absent.
+// A row's ratios are printed only where our mesh is within a factor 2 of the paper's size.
 // Prints a markdown table (docs/performance.md; ratio = our time / the paper's) and writes
 // the JSON after every mesh. Rows can be put together from several runs with --merge.
 #include <algorithm>
@@ -38,12 +41,18 @@ struct PaperRow {
 };
 
 // Table 1 of Levi & Zorin 2014 (Intel Core i7-2720QM laptop, MOSEK), the rows whose models
-// are in the shared data (igea_100k is the paper's igea).
+// are in the shared data (igea_100k is the paper's igea; hand, fish, dragon and lion are
+// disks of other sizes standing in for the paper's models).
 const std::map<std::string, PaperRow> kPaper = {
     {"cow", {8, 1.3, 28, 45, 1.2}},           {"elephant", {50, 9, 34, 558, 7}},
     {"homer", {10, 1, 43, 67, 1.3}},          {"horse", {102, 17, 49, 1480, 13}},
-    {"igea_100k", {100, 19, 99, 3208, 13}},
+    {"igea_100k", {100, 19, 99, 3208, 13}},   {"hand", {3, 0.3, 58, 6, 0.3}},
+    {"fish", {35, 6, 54, 354, 5}},            {"dragon", {104, 18, 59, 1810, 15}},
+    {"lion", {55, 8, 24, 363, 8}},
 };
+
+// The disks of the shared data that stand in for Table 1 rows.
+const char* const kDiskStandIns[] = {"hand", "fish", "dragon", "lion"};
 
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -65,6 +74,7 @@ nlohmann::json run_mesh(const fs::path& file, int direct_max_faces, int sweeps, 
   row["field_energy"] = g.field.energy;
   row["singularities"] = g.singular.size();
   row["euler_characteristic"] = g.graph.euler_characteristic();
+  row["boundary_loops"] = g.graph.num_boundary_loops;
   row["graph_s"] = g.graph_time_s;
   row["field_s"] = g.field_time_s;
   row["cut_s"] = g.cut_time_s;
@@ -146,7 +156,9 @@ void print_table(const nlohmann::json& rows) {
   for (const auto& row : rows) {
     const std::string name = row["mesh"];
     const auto p = kPaper.find(name);
-    const bool has = p != kPaper.end();
+    // The paper's row, when its model is within a factor 2 of ours in size.
+    const bool has = p != kPaper.end() && row["faces"].get<double>() <= 2000 * p->second.faces_k &&
+                     row["faces"].get<double>() >= 500 * p->second.faces_k;
     const PaperRow pr = has ? p->second : PaperRow{0, 0, 0, 0, 0};
     auto paper = [&](double v) { return has ? cell(nlohmann::json{{"v", v}}, "v", "%g") : std::string("-"); };
     std::printf("| %s | %d | %d | %s | %s (%s) | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", name.c_str(),
@@ -193,7 +205,8 @@ constexpr const char* kUsage =
     "usage: bench_table1 [--out FILE.json] [--direct-max-faces N] [--sweeps N] [--only-l2] [--field smoothest|unit] [--parallel]\n"
     "                    [MESH.obj ...]\n"
     "       bench_table1 --merge RUN.json ...   (print earlier runs' rows as one table)\n"
-    "Without meshes: every .obj in the shared data's closed/ folder (skipped when absent).\n";
+    "Without meshes: every .obj in the shared data's closed/ folder and the disks hand, fish, dragon and lion\n"
+    "(skipped when absent).\n";
 
 int run(int argc, char** argv) {
   std::string out = "table1.json";
@@ -231,6 +244,10 @@ int run(int argc, char** argv) {
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".obj") meshes.push_back(e.path());
     std::sort(meshes.begin(), meshes.end());
+    for (const char* name : kDiskStandIns) {
+      const fs::path disk = fs::path(STRICTMIN_SHARED_DATA) / "disk" / (std::string(name) + ".obj");
+      if (fs::exists(disk)) meshes.push_back(disk);
+    }
   }
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& m : meshes) {

@@ -115,12 +115,12 @@ int run_gparam(const GParamArgs& a) {
   if (!a.quad_mesh.empty() && lowercase_extension(a.quad_mesh) != ".obj")
     throw InputError("--quad-mesh " + a.quad_mesh + ": the quad mesh is written as .obj only");
   const auto threads = limit_threads(a.out.threads);
-  if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a closed triangle surface)");
+  if (a.mesh.empty()) throw InputError("gparam needs a mesh file (a triangle surface, closed or with boundary)");
   std::vector<std::string> warnings;
   const Mesh mesh = read_mesh(a.mesh, &warnings);
   // Unused vertices, which the other tasks ignore with a warning, are refused here (the
   // surface graph's message): their warning would say the opposite of the error that follows.
-  if (!unreferenced_vertices(mesh).empty()) surface_graph(mesh, a.mesh);  // throws, naming the vertex
+  if (!unreferenced_vertices(mesh).empty()) surface_graph(mesh, a.mesh, true);  // throws, naming the vertex
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
   const GParamOptions o = make_options(a, mesh);
   progress(a.out, "gparam: " + std::to_string(mesh.num_elements()) + " triangles, method " +
@@ -164,9 +164,11 @@ void add_gparam_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<GParamArgs>();
   CLI::App* cmd = app.add_subcommand(
       "gparam",
-      "Global seamless parametrization of a closed surface guided by a cross field (the paper's Appendix A): "
-      "field, singularities, cut, seams as linear equalities, then the chosen method; per-corner vt in the OBJ.");
-  cmd->add_option("mesh", args->mesh, "Input closed surface (.obj/.off triangles, one component, any genus)");
+      "Global seamless parametrization of a surface guided by a cross field (the paper's Appendix A): "
+      "field, singularities, cut, seams as linear equalities, then the chosen method; per-corner vt in the OBJ. "
+      "Surfaces with boundary: the field follows the boundary, the map's boundary is free.");
+  cmd->add_option("mesh", args->mesh,
+                  "Input surface (.obj/.off triangles, one component, any genus; closed or with boundary loops)");
   cmd->add_option("-o,--output", args->output, "Output .obj: the input's vertices and faces, vt per cut-mesh vertex, f v/vt");
   cmd->add_option("--field", args->field,
                   "smoothest (default: Knoeppel et al. 2013), unit (the smoothest field lowered among unit fields: "

@@ -260,6 +260,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   for (const Singularity& x : g->singular) singular.append(py::make_tuple(x.vertex, x.quarters));
   out["singularities"] = singular;
   out["euler_characteristic"] = g->graph.euler_characteristic();
+  out["boundary_loops"] = g->graph.num_boundary_loops;
   out["edge_length"] = g->edge_length;
   out["seam_error"] = g->seam_error;
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));

@@ -269,9 +269,10 @@ def param(V, F, method="linf", measure="arap", init=None, *, progress=None, verb
 def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=None, *, curvature_alignment=None,
            parallel=False, cones=None, integer_grid=False, grid_guide=None, progress=None, verbose=False,
            **options):
-    """Globally parametrize a closed manifold triangle surface (one component, any genus)
-    guided by a cross field, with seams as linear constraints (the paper's Appendix A;
-    docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
+    """Globally parametrize a manifold triangle surface (one component, any genus, closed or
+    with boundary loops: the field then follows the boundary and the map's boundary is free;
+    integer_grid, parallel, cones and the unit field take closed surfaces only) guided by a
+    cross field, with seams as linear constraints (the paper's Appendix A; docs/gparam.md). method: l2, linf, relax, direct, lp, irls; measure: fd (against the
     field) or arap; field: None or "smoothest", "unit" (the smoothest field lowered among unit fields),
     "curvature" (curvature_alignment, default 0.01, says how closely it follows the principal
     directions), or #F by 3 directions; parallel: keep the field's singularities and make it
@@ -285,7 +286,7 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     CLI's --grid-guide). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
     into uv), ``singularities`` [(vertex, index in quarters)], ``field`` (#F by 3, the field
-    used), ``euler_characteristic``, ``edge_length``, ``seam_error``."""
+    used), ``euler_characteristic``, ``boundary_loops``, ``edge_length``, ``seam_error``."""
     V = _vertices(V)
     F = _faces(F)
     directions = None

@@ -42,7 +42,8 @@ HermitianLower hermitian_energy(const Mesh& mesh, const SurfaceGraph& g, const F
   HermitianLower A;
   A.n = F;
   A.start.assign(F + 1, 0);
-  for (int e = 0; e < E; ++e) ++A.start[std::min(g.edge_faces(e, 0), g.edge_faces(e, 1)) + 1];
+  for (int e = 0; e < E; ++e)
+    if (!g.is_boundary_edge(e)) ++A.start[std::min(g.edge_faces(e, 0), g.edge_faces(e, 1)) + 1];
   for (int f = 0; f < F; ++f) A.start[f + 1] += A.start[f] + 1;  // + 1: the diagonal
   A.row.resize(A.start[F]);
   A.value.assign(A.start[F], Complex(0, 0));
@@ -52,6 +53,7 @@ HermitianLower hermitian_energy(const Mesh& mesh, const SurfaceGraph& g, const F
     A.value[next[f]++] = diagonal(f);
   }
   for (int e = 0; e < E; ++e) {
+    if (g.is_boundary_edge(e)) continue;
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
     const double w = field_edge_weight(mesh, g, fr, e);
     const Complex rho = std::polar(1.0, 4.0 * fr.transport(e));
@@ -134,6 +136,74 @@ void lower_among_unit_fields(const Mesh& mesh, const SurfaceGraph& g, const Face
   out.timing.unit_s = seconds_since(t0);
 }
 
+// The field a boundary face must have (docs/gparam.md, "Surfaces with boundary"): the
+// fourth power of its boundary side's direction; a face with two boundary sides takes the
+// normalized sum of both (the longer side's when the two are 45 degrees apart and cancel).
+// Zero on interior faces.
+Eigen::VectorXcd boundary_alignment(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr) {
+  Eigen::VectorXcd q = Eigen::VectorXcd::Zero(g.num_faces);
+  for (int f = 0; f < g.num_faces; ++f) {
+    Complex sum(0, 0), longest(0, 0);
+    double longest_length = -1;
+    for (int i = 0; i < 3; ++i) {
+      if (!g.is_boundary_edge(g.face_edges(f, i))) continue;
+      const Eigen::Vector3d d = row3(mesh.V, mesh.F(f, (i + 1) % 3)) - row3(mesh.V, mesh.F(f, i));
+      const Complex side = std::polar(1.0, 4.0 * std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f))));
+      sum += side;
+      if (d.norm() > longest_length) {
+        longest_length = d.norm();
+        longest = side;
+      }
+    }
+    if (longest_length >= 0) q(f) = std::abs(sum) > 1e-6 ? sum / std::abs(sum) : longest;
+  }
+  return q;
+}
+
+// Solves A x = rhs with x fixed to `fixed_value` on the faces where it is non-zero (the
+// boundary faces): A's free rows and columns factored, the fixed columns moved to the
+// right-hand side. A's free block is positive definite when every free face is connected to
+// a fixed one (a connected surface with boundary).
+Eigen::VectorXcd solve_with_fixed_faces(const HermitianLower& A, const Eigen::VectorXcd& rhs,
+                                        const Eigen::VectorXcd& fixed_value, const std::string& system,
+                                        CrossField& out) {
+  const int n = A.n;
+  std::vector<int> free_index(n, -1);
+  int m = 0;
+  for (int f = 0; f < n; ++f)
+    if (fixed_value(f) == Complex(0, 0)) free_index[f] = m++;
+  HermitianLower free;
+  free.n = m;
+  free.start.assign(m + 1, 0);
+  Eigen::VectorXcd b(m);
+  for (int f = 0; f < n; ++f)
+    if (free_index[f] >= 0) b(free_index[f]) = rhs(f);
+  for (int c = 0; c < n; ++c) {
+    for (int k = A.start[c]; k < A.start[c + 1]; ++k) {
+      const int r = A.row[k];  // A(r, c) = value, A(c, r) = conj(value)
+      const bool rf = free_index[r] >= 0, cf = free_index[c] >= 0;
+      if (rf && cf) {
+        free.row.push_back(free_index[r]);
+        free.value.push_back(A.value[k]);
+      } else if (rf) {
+        b(free_index[r]) -= A.value[k] * fixed_value(c);
+      } else if (cf) {
+        b(free_index[c]) -= std::conj(A.value[k]) * fixed_value(r);
+      }
+    }
+    if (free_index[c] >= 0) free.start[free_index[c] + 1] = static_cast<int>(free.row.size());
+  }
+  Eigen::VectorXcd x = fixed_value;
+  if (m == 0) return x;
+  SerialCholmodScope serial;
+  HermitianCholesky cholesky;
+  factorize_or_throw(cholesky, free, system, out);
+  const Eigen::VectorXcd y = cholesky.solve(b);
+  for (int f = 0; f < n; ++f)
+    if (free_index[f] >= 0) x(f) = y(free_index[f]);
+  return x;
+}
+
 }  // namespace
 
 bool CrossFieldOptions::is_valid(std::string* why) const {
@@ -177,6 +247,8 @@ FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
   }
   fr.transport.resize(g.num_edges());
   for (int e = 0; e < g.num_edges(); ++e) {
+    fr.transport(e) = 0;
+    if (g.is_boundary_edge(e)) continue;
     const Eigen::Vector3d d = row3(mesh.V, g.edges(e, 1)) - row3(mesh.V, g.edges(e, 0));
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
     const double theta_f = std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f)));
@@ -189,17 +261,45 @@ FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
 double field_energy(const Eigen::VectorXcd& u, const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr) {
   double sum = 0;
   for (int e = 0; e < g.num_edges(); ++e) {
+    if (g.is_boundary_edge(e)) continue;
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
     sum += field_edge_weight(mesh, g, fr, e) * std::norm(u(h) - std::polar(1.0, 4.0 * fr.transport(e)) * u(f));
   }
   return sum;
 }
 
+namespace {
+
+// The smoothest field on a surface with boundary: E(u) least with u fixed on the boundary
+// faces to their boundary sides' directions (a Dirichlet problem: one solve, no eigenvector),
+// normalized per face. options.unit and pin_face are refused (the boundary sets the rotation).
+CrossField aligned_smoothest_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
+                                   const CrossFieldOptions& options) {
+  if (options.unit) throw InputError("cross field: the unit field (--field unit) takes closed surfaces only");
+  if (options.pin_face >= 0)
+    throw InputError("cross field: pin_face is for closed surfaces (on a surface with boundary the boundary sets the "
+                     "field's rotation)");
+  const auto t0 = std::chrono::steady_clock::now();
+  const HermitianLower A = hermitian_energy(mesh, g, fr, Eigen::VectorXd::Zero(g.num_faces));
+  CrossField out;
+  out.timing.assemble_s = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  out.u = normalize_per_face(solve_with_fixed_faces(A, Eigen::VectorXcd::Zero(g.num_faces),
+                                                    boundary_alignment(mesh, g, fr), "connection Laplacian", out));
+  out.timing.iterate_s = seconds_since(t1) - out.timing.analyze_s - out.timing.factorize_s;
+  out.iterations = 1;
+  out.energy = out.eigen_energy = field_energy(out.u, mesh, g, fr);
+  return out;
+}
+
+}  // namespace
+
 CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr,
                                  const CrossFieldOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("cross field options: " + why);
   const int F = g.num_faces;
+  if (g.has_boundary()) return aligned_smoothest_field(mesh, g, fr, options);
   auto t0 = std::chrono::steady_clock::now();
   HermitianLower A = hermitian_energy(mesh, g, fr, Eigen::VectorXd::Zero(F));
   // Shift: E may be singular (a zero-energy field exists, e.g. on a polycube).
@@ -241,6 +341,7 @@ CrossField smoothest_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
 Eigen::VectorXcd curvature_directions(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr) {
   Eigen::VectorXcd q = Eigen::VectorXcd::Zero(g.num_faces);
   for (int e = 0; e < g.num_edges(); ++e) {
+    if (g.is_boundary_edge(e)) continue;  // no dihedral angle
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
     const Eigen::Vector3d d = row3(mesh.V, g.edges(e, 1)) - row3(mesh.V, g.edges(e, 0));
     const Eigen::Vector3d nf = row3(fr.normal, f), nh = row3(fr.normal, h);
@@ -269,10 +370,14 @@ CrossField curvature_cross_field(const Mesh& mesh, const SurfaceGraph& g, const 
   const Eigen::VectorXcd rhs = s * fr.area.cast<Complex>().cwiseProduct(q);
   CrossField out;
   out.timing.assemble_s = seconds_since(t0);
-  SerialCholmodScope serial;
-  HermitianCholesky cholesky;
-  factorize_or_throw(cholesky, A, "curvature system", out);
-  out.u = normalize_per_face(cholesky.solve(rhs));
+  if (g.has_boundary()) {
+    out.u = normalize_per_face(solve_with_fixed_faces(A, rhs, boundary_alignment(mesh, g, fr), "curvature system", out));
+  } else {
+    SerialCholmodScope serial;
+    HermitianCholesky cholesky;
+    factorize_or_throw(cholesky, A, "curvature system", out);
+    out.u = normalize_per_face(cholesky.solve(rhs));
+  }
   out.iterations = 1;
   out.energy = field_energy(out.u, mesh, g, fr);
   return out;

@@ -35,16 +35,18 @@ std::vector<std::vector<int>> cut_edges_at(const SurfaceGraph& g, const std::vec
   return at;
 }
 
-// The edges no tree edge crosses, less every dangling branch that ends at a regular vertex.
+// The interior edges no tree edge crosses, less every dangling branch that ends at a regular
+// interior vertex (a branch that reaches the boundary stays: it cuts between boundary loops).
 void prune_cut(const SurfaceGraph& g, const std::vector<int>& quarters, CutGraph& c) {
   c.cut.assign(g.num_edges(), 0);
-  for (int e = 0; e < g.num_edges(); ++e) c.cut[e] = c.tree[e] ? 0 : 1;
+  for (int e = 0; e < g.num_edges(); ++e) c.cut[e] = c.tree[e] || g.is_boundary_edge(e) ? 0 : 1;
+  auto prunable = [&](int v) { return quarters[v] == 0 && !g.boundary_vertex[v]; };
   const auto at = cut_edges_at(g, c.cut);
   std::vector<int> degree(g.num_vertices);
   std::deque<int> queue;
   for (int v = 0; v < g.num_vertices; ++v) {
     degree[v] = static_cast<int>(at[v].size());
-    if (degree[v] == 1 && quarters[v] == 0) queue.push_back(v);
+    if (degree[v] == 1 && prunable(v)) queue.push_back(v);
   }
   while (!queue.empty()) {
     const int v = queue.front();
@@ -55,7 +57,7 @@ void prune_cut(const SurfaceGraph& g, const std::vector<int>& quarters, CutGraph
         c.cut[e] = 0;
         const int w = g.edges(e, 0) == v ? g.edges(e, 1) : g.edges(e, 0);
         --degree[v];
-        if (--degree[w] == 1 && quarters[w] == 0) queue.push_back(w);
+        if (--degree[w] == 1 && prunable(w)) queue.push_back(w);
         break;
       }
   }
@@ -78,23 +80,23 @@ void comb(const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u
   }
   c.matching.assign(g.num_edges(), 0);
   for (int e = 0; e < g.num_edges(); ++e) {
+    if (g.is_boundary_edge(e)) continue;
     const double turn = c.combed(g.edge_faces(e, 1)) - c.combed(g.edge_faces(e, 0)) - fr.transport(e);
     const long k = std::lround(turn / kQuarter);
     c.matching[e] = static_cast<int>(((k % 4) + 4) % 4);
   }
 }
 
-// Wedges: the corners around each vertex between two consecutive cut edges of its fan.
+// Wedges: the corners around each vertex between two consecutive cut edges of its fan (or
+// between the boundary and a cut edge: a boundary vertex's fan is open and starts a wedge).
 void wedges(const SurfaceGraph& g, CutGraph& c) {
   c.corner_wedge.resize(g.num_faces, 3);
   c.wedge_vertex.clear();
   for (int v = 0; v < g.num_vertices; ++v) {
     const int begin = g.fan_start[v], m = g.fan_start[v + 1] - begin;
-    auto crossed = [&](int k) {  // the edge from fan face k to fan face k + 1
-      return g.face_edges(g.fan_faces[begin + k], (g.fan_corners[begin + k] + 2) % 3);
-    };
+    auto crossed = [&](int k) { return g.fan_edge(begin + k); };  // from fan face k to fan face k + 1
     int start = 0;
-    for (int k = 0; k < m; ++k)
+    for (int k = 0; k < m && !g.boundary_vertex[v]; ++k)
       if (c.cut[crossed(k)]) {
         start = (k + 1) % m;
         break;
@@ -108,12 +110,13 @@ void wedges(const SurfaceGraph& g, CutGraph& c) {
   }
 }
 
-// Splits the cut into branches between nodes (singular vertices, cut degree != 2).
+// Splits the cut into branches between nodes (singular vertices, cut degree != 2, boundary
+// vertices: the two sides of a seam through the boundary are not one transition).
 void branches(const SurfaceGraph& g, const std::vector<int>& quarters, CutGraph& c) {
   const auto at = cut_edges_at(g, c.cut);
   std::vector<char> node(g.num_vertices, 0), used(g.num_edges(), 0);
   for (int v = 0; v < g.num_vertices; ++v)
-    node[v] = !at[v].empty() && (at[v].size() != 2 || quarters[v] != 0);
+    node[v] = !at[v].empty() && (at[v].size() != 2 || quarters[v] != 0 || g.boundary_vertex[v]);
   auto walk = [&](int v, int e) {
     SeamBranch b;
     b.vertices.push_back(v);

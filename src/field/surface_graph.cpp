@@ -22,18 +22,24 @@ std::vector<int> dual_spanning_tree(const SurfaceGraph& g, std::vector<int>& par
   for (size_t k = 0; k < order.size(); ++k)
     for (int i = 0; i < 3; ++i) {
       const int f = order[k], h = g.neighbour(f, i);
-      if (seen[h]) continue;
+      if (h < 0 || seen[h]) continue;
       seen[h] = 1;
       parent_edge[h] = g.face_edges(f, i);
       order.push_back(h);
     }
   return order;
 }
+
+int SurfaceGraph::neighbour(int f, int i) const {
+  const int e = face_edges(f, i);
+  return edge_faces(e, 0) == f && edge_sides(e, 0) == i ? edge_faces(e, 1) : edge_faces(e, 0);
+}
+
 namespace {
 
 std::string prefix(const std::string& source) { return source.empty() ? std::string("gparam: ") : source + ": "; }
 
-void check_closed_manifold(const Mesh& mesh, const std::string& source) {
+void check_manifold(const Mesh& mesh, const std::string& source, bool allow_boundary) {
   if (mesh.element_type() != ElementType::Triangle || mesh.dim() != 3)
     throw InputError(prefix(source) + "global parametrization needs a triangle surface in 3D");
   const SurfaceTopology t = surface_topology(mesh);
@@ -45,26 +51,68 @@ void check_closed_manifold(const Mesh& mesh, const std::string& source) {
                      " is non-manifold (its faces form more than one fan)");
   if (t.components != 1)
     throw InputError(prefix(source) + "the mesh has " + std::to_string(t.components) +
-                     " connected components; global parametrization takes one closed surface");
-  if (!t.boundary_loops.empty())
+                     " connected components; global parametrization takes one surface");
+  if (!allow_boundary && !t.boundary_loops.empty())
     throw InputError(prefix(source) + "the surface has " + std::to_string(t.boundary_loops.size()) +
                      " boundary loop(s) (first at vertex " + std::to_string(t.boundary_loops.front().front()) +
-                     "); gparam takes closed surfaces only (use 'strictmin param' for a disk)");
+                     "); this takes closed surfaces only");
 }
 
-}  // namespace
-
-int SurfaceGraph::neighbour(int f, int i) const {
-  const int e = face_edges(f, i);
-  return edge_faces(e, 0) == f && edge_sides(e, 0) == i ? edge_faces(e, 1) : edge_faces(e, 0);
+// Fans from face_edges / edge_faces: from any face of v, the next face counter-clockwise
+// lies across the side that ends at v (side (i + 2) % 3 for the corner i of v); a boundary
+// vertex's walk starts at the face whose side leaving v (side i) is a boundary edge. False
+// when a vertex is in no face, or a walk ends or closes before it has seen every face of v
+// (several fans: a non-manifold vertex). Also marks the boundary vertices and counts the
+// boundary loops.
+bool build_fans(const Mesh& mesh, SurfaceGraph& g) {
+  const int V = g.num_vertices, F = g.num_faces;
+  std::vector<int> first_face(V, -1), first_corner(V, -1);
+  g.boundary_vertex.assign(V, 0);
+  g.fan_start.assign(V + 1, 0);
+  for (int f = F - 1; f >= 0; --f)
+    for (int i = 2; i >= 0; --i) {
+      const int v = mesh.F(f, i);
+      ++g.fan_start[v + 1];
+      if (g.boundary_vertex[v]) continue;  // keep the open fan's start
+      first_face[v] = f;
+      first_corner[v] = i;
+      if (g.is_boundary_edge(g.face_edges(f, i))) g.boundary_vertex[v] = 1;
+    }
+  for (int v = 0; v < V; ++v) {
+    if (g.fan_start[v + 1] == 0) return false;
+    g.fan_start[v + 1] += g.fan_start[v];
+  }
+  g.fan_faces.resize(g.fan_start.back());
+  g.fan_corners.resize(g.fan_start.back());
+  for (int v = 0; v < V; ++v) {
+    int f = first_face[v], i = first_corner[v];
+    for (int k = g.fan_start[v]; k < g.fan_start[v + 1]; ++k) {
+      if (f < 0 || (k > g.fan_start[v] && f == first_face[v])) return false;
+      g.fan_faces[k] = f;
+      g.fan_corners[k] = i;
+      f = g.neighbour(f, (i + 2) % 3);
+      if (f >= 0) i = mesh.F(f, 0) == v ? 0 : mesh.F(f, 1) == v ? 1 : 2;
+    }
+    if (f != (g.boundary_vertex[v] ? -1 : first_face[v])) return false;
+  }
+  // Boundary loops: each boundary vertex starts exactly one boundary edge (manifold).
+  std::vector<int> next(V, -1);
+  for (int e = 0; e < g.num_edges(); ++e)
+    if (g.is_boundary_edge(e)) next[g.edges(e, 0)] = g.edges(e, 1);
+  std::vector<char> seen(V, 0);
+  g.num_boundary_loops = 0;
+  for (int v = 0; v < V; ++v) {
+    if (next[v] < 0 || seen[v]) continue;
+    ++g.num_boundary_loops;
+    for (int w = v; w >= 0 && !seen[w]; w = next[w]) seen[w] = 1;
+  }
+  return true;
 }
-
-namespace {
 
 // The checked construction: every defect is reported with its element, in the order the
 // checks run (used when the fast construction below meets any defect).
-SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source) {
-  check_closed_manifold(mesh, source);
+SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source, bool allow_boundary) {
+  check_manifold(mesh, source, allow_boundary);
   SurfaceGraph g;
   g.num_vertices = mesh.num_vertices();
   g.num_faces = mesh.num_elements();
@@ -96,79 +144,29 @@ SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source) 
   g.edges.resize(E, 2);
   g.edge_faces.resize(E, 2);
   g.edge_sides.resize(E, 2);
-  for (int e = 0; e < E; ++e)
+  for (int e = 0; e < E; ++e) {
+    if (faces[e][0] < 0) {  // a boundary edge run from its larger end: its one face goes first
+      std::swap(ends[e][0], ends[e][1]);
+      std::swap(faces[e][0], faces[e][1]);
+      std::swap(sides[e][0], sides[e][1]);
+    }
     for (int k = 0; k < 2; ++k) {
       g.edges(e, k) = ends[e][k];
       g.edge_faces(e, k) = faces[e][k];
       g.edge_sides(e, k) = sides[e][k];
     }
-  // Fans: from any face of v, the next face counter-clockwise lies across the side that
-  // ends at v (side (i + 2) % 3 for the corner i of v).
-  std::vector<int> first_face(g.num_vertices, -1), first_corner(g.num_vertices, -1), degree(g.num_vertices, 0);
+  }
+  std::vector<char> used(g.num_vertices, 0);
   for (int f = 0; f < F; ++f)
-    for (int i = 0; i < 3; ++i) {
-      const int v = mesh.F(f, i);
-      ++degree[v];
-      if (first_face[v] < 0) {
-        first_face[v] = f;
-        first_corner[v] = i;
-      }
-    }
-  g.fan_start.assign(g.num_vertices + 1, 0);
-  for (int v = 0; v < g.num_vertices; ++v) {
-    if (degree[v] == 0)
+    for (int i = 0; i < 3; ++i) used[mesh.F(f, i)] = 1;
+  for (int v = 0; v < g.num_vertices; ++v)
+    if (!used[v])
       throw InputError(prefix(source) + "vertex " + std::to_string(v) +
                        " (0-based) belongs to no face: a global parametrization needs every vertex on the surface "
                        "(singularities and cone files are per vertex); remove the unused vertices");
-    g.fan_start[v + 1] = g.fan_start[v] + degree[v];
-  }
-  g.fan_faces.resize(g.fan_start.back());
-  g.fan_corners.resize(g.fan_start.back());
-  for (int v = 0; v < g.num_vertices; ++v) {
-    int f = first_face[v], i = first_corner[v];
-    for (int k = g.fan_start[v]; k < g.fan_start[v + 1]; ++k) {
-      g.fan_faces[k] = f;
-      g.fan_corners[k] = i;
-      f = g.neighbour(f, (i + 2) % 3);
-      i = mesh.F(f, 0) == v ? 0 : mesh.F(f, 1) == v ? 1 : 2;
-    }
-  }
+  if (!build_fans(mesh, g))  // surface_topology has reported every non-manifold vertex above
+    throw InputError(prefix(source) + "a vertex's faces do not form one fan (non-manifold mesh)");
   return g;
-}
-
-
-// Fans from face_edges / edge_faces: from any face of v, the next face counter-clockwise
-// lies across the side that ends at v (side (i + 2) % 3 for the corner i of v). False when a
-// walk closes before it has seen every face of v (several fans: a non-manifold vertex).
-bool build_fans(const Mesh& mesh, SurfaceGraph& g) {
-  const int V = g.num_vertices, F = g.num_faces;
-  std::vector<int> first_face(V, -1), first_corner(V, -1);
-  g.fan_start.assign(V + 1, 0);
-  for (int f = F - 1; f >= 0; --f)
-    for (int i = 2; i >= 0; --i) {
-      const int v = mesh.F(f, i);
-      ++g.fan_start[v + 1];
-      first_face[v] = f;
-      first_corner[v] = i;
-    }
-  for (int v = 0; v < V; ++v) {
-    if (g.fan_start[v + 1] == 0) return false;  // a vertex in no face
-    g.fan_start[v + 1] += g.fan_start[v];
-  }
-  g.fan_faces.resize(g.fan_start.back());
-  g.fan_corners.resize(g.fan_start.back());
-  for (int v = 0; v < V; ++v) {
-    int f = first_face[v], i = first_corner[v];
-    for (int k = g.fan_start[v]; k < g.fan_start[v + 1]; ++k) {
-      if (k > g.fan_start[v] && f == first_face[v]) return false;
-      g.fan_faces[k] = f;
-      g.fan_corners[k] = i;
-      f = g.neighbour(f, (i + 2) % 3);
-      i = mesh.F(f, 0) == v ? 0 : mesh.F(f, 1) == v ? 1 : 2;
-    }
-    if (f != first_face[v]) return false;
-  }
-  return true;
 }
 
 // One component: every face reached from face 0 across edges.
@@ -181,7 +179,7 @@ bool connected(const SurfaceGraph& g) {
     const int f = stack.back();
     stack.pop_back();
     for (int i = 0; i < 3; ++i)
-      if (const int h = g.neighbour(f, i); !seen[h]) {
+      if (const int h = g.neighbour(f, i); h >= 0 && !seen[h]) {
         seen[h] = 1;
         ++count;
         stack.push_back(h);
@@ -191,9 +189,10 @@ bool connected(const SurfaceGraph& g) {
 }
 
 // The fast construction: half-edges sorted by their undirected edge; every edge must have
-// exactly two, one each way. Edges are numbered in order of first appearance (face by face,
-// side by side), as the checked construction numbers them. Null at the first defect.
-std::optional<SurfaceGraph> sorted_surface_graph(const Mesh& mesh) {
+// exactly two, one each way (or, with allow_boundary, one: a boundary edge). Edges are
+// numbered in order of first appearance (face by face, side by side), as the checked
+// construction numbers them. Null at the first defect.
+std::optional<SurfaceGraph> sorted_surface_graph(const Mesh& mesh, bool allow_boundary) {
   if (mesh.element_type() != ElementType::Triangle || mesh.dim() != 3 || mesh.num_elements() == 0) return std::nullopt;
   SurfaceGraph g;
   g.num_vertices = mesh.num_vertices();
@@ -206,48 +205,58 @@ std::optional<SurfaceGraph> sorted_surface_graph(const Mesh& mesh) {
       half[3 * f + i] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + i};
     }
   std::sort(half.begin(), half.end());
-  if (H % 2) return std::nullopt;
-  std::vector<int> twin(H);
-  for (int k = 0; k < H; k += 2) {
-    if (half[k].first != half[k + 1].first || (k + 2 < H && half[k + 2].first == half[k].first)) return std::nullopt;
-    twin[half[k].second] = half[k + 1].second;
-    twin[half[k + 1].second] = half[k].second;
+  std::vector<int> twin(H, -1);
+  for (int k = 0; k < H;) {
+    const int n = k + 1 < H && half[k + 1].first == half[k].first ? 2 : 1;
+    if (k + n < H && half[k + n].first == half[k].first) return std::nullopt;  // three faces on an edge
+    if (n == 1 && !allow_boundary) return std::nullopt;
+    if (n == 2) {
+      twin[half[k].second] = half[k + 1].second;
+      twin[half[k + 1].second] = half[k].second;
+    }
+    k += n;
   }
-  const int E = H / 2;
   g.face_edges.resize(F, 3);
-  g.edges.resize(E, 2);
-  g.edge_faces.resize(E, 2);
-  g.edge_sides.resize(E, 2);
-  int next = 0;
+  std::vector<std::array<int, 6>> rows;  // per edge: ends, faces, sides
+  rows.reserve(static_cast<size_t>(H) / 2 + 1);
   for (int h = 0; h < H; ++h) {
     const int t = twin[h];
-    if (t < h) {
+    if (t >= 0 && t < h) {
       g.face_edges(h / 3, h % 3) = g.face_edges(t / 3, t % 3);
       continue;
     }
-    const int e = next++, f = h / 3, i = h % 3;
+    const int e = static_cast<int>(rows.size()), f = h / 3, i = h % 3;
     const int a = mesh.F(f, i), b = mesh.F(f, (i + 1) % 3);
-    const int ta = mesh.F(t / 3, t % 3);
-    if (ta == a) return std::nullopt;  // both faces run through the edge the same way
     g.face_edges(f, i) = e;
-    g.edges(e, 0) = std::min(a, b);
-    g.edges(e, 1) = std::max(a, b);
-    const int k = a < b ? 0 : 1;  // edge_faces(e, 0) runs from the smaller end to the larger
-    g.edge_faces(e, k) = f;
-    g.edge_sides(e, k) = i;
-    g.edge_faces(e, 1 - k) = t / 3;
-    g.edge_sides(e, 1 - k) = t % 3;
+    if (t < 0) {  // a boundary edge: its face first, its ends as the face runs it
+      rows.push_back({a, b, f, -1, i, -1});
+      continue;
+    }
+    if (mesh.F(t / 3, t % 3) == a) return std::nullopt;  // both faces run through the edge the same way
+    // edge_faces(e, 0) runs from the smaller end to the larger
+    if (a < b) rows.push_back({a, b, f, t / 3, i, t % 3});
+    else rows.push_back({b, a, t / 3, f, t % 3, i});
   }
+  const int E = static_cast<int>(rows.size());
+  g.edges.resize(E, 2);
+  g.edge_faces.resize(E, 2);
+  g.edge_sides.resize(E, 2);
+  for (int e = 0; e < E; ++e)
+    for (int k = 0; k < 2; ++k) {
+      g.edges(e, k) = rows[e][k];
+      g.edge_faces(e, k) = rows[e][2 + k];
+      g.edge_sides(e, k) = rows[e][4 + k];
+    }
   if (!build_fans(mesh, g) || !connected(g)) return std::nullopt;
   return g;
 }
 
 }  // namespace
 
-SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source) {
+SurfaceGraph surface_graph(const Mesh& mesh, const std::string& source, bool allow_boundary) {
   check_mesh_structure(mesh, source);
-  if (std::optional<SurfaceGraph> g = sorted_surface_graph(mesh)) return std::move(*g);
-  SurfaceGraph checked = checked_surface_graph(mesh, source);  // throws, naming the defect
+  if (std::optional<SurfaceGraph> g = sorted_surface_graph(mesh, allow_boundary)) return std::move(*g);
+  SurfaceGraph checked = checked_surface_graph(mesh, source, allow_boundary);  // throws, naming the defect
   return checked;
 }
 

@@ -135,12 +135,14 @@ double simplex_gradients(const Eigen::Matrix<double, d + 1, d>& P, Eigen::Matrix
 
 }  // namespace
 
-Problem make_problem(const Mesh& mesh) {
+namespace {
+
+Problem problem_in_frames(const Mesh& mesh, bool flat_surfaces_in_the_plane) {
   check_mesh_structure(mesh, "make_problem");
   if (mesh.F.rows() == 0) throw InputError("make_problem: the mesh has no elements (no triangle or tetrahedron to map)");
   Problem p;
   const bool tets = mesh.element_type() == ElementType::Tetrahedron;
-  const bool planar = !tets && mesh.is_planar();
+  const bool planar = !tets && (mesh.dim() == 2 || (flat_surfaces_in_the_plane && mesh.is_planar()));
   const Mesh src = planar ? to_planar(mesh) : mesh;
   p.domain_dim = tets ? 3 : 2;
   p.image_dim = p.domain_dim;
@@ -179,5 +181,11 @@ Problem make_problem(const Mesh& mesh) {
     if (!used[v]) p.fixed[v] = 1;
   return p;
 }
+
+}  // namespace
+
+Problem make_problem(const Mesh& mesh) { return problem_in_frames(mesh, true); }
+
+Problem make_surface_problem(const Mesh& mesh) { return problem_in_frames(mesh, false); }
 
 }  // namespace strictmin

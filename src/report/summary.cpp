@@ -154,9 +154,15 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
 
 namespace {
 
-nlohmann::json singularity_list(const std::vector<Singularity>& s) {
+// Each singular vertex and its index in quarters; "boundary": true on a boundary vertex (a
+// corner of the boundary, where the index is the boundary's turn in quarters, signed).
+nlohmann::json singularity_list(const std::vector<Singularity>& s, const SurfaceGraph& g) {
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& x : s) list.push_back({{"vertex", x.vertex}, {"index", x.quarters}});
+  for (const auto& x : s) {
+    nlohmann::json item = {{"vertex", x.vertex}, {"index", x.quarters}};
+    if (g.boundary_vertex[static_cast<size_t>(x.vertex)]) item["boundary"] = true;
+    list.push_back(item);
+  }
   return list;
 }
 
@@ -176,7 +182,8 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["vertices"] = mesh.num_vertices();
   s["euler_characteristic"] = g.graph.euler_characteristic();
   s["singularities"] = g.singular.size();
-  s["singularity_indices"] = singularity_list(g.singular);
+  s["singularity_indices"] = singularity_list(g.singular, g.graph);
+  s["boundary_loops"] = g.graph.num_boundary_loops;
   s["seam_edges"] = g.cut.num_cut_edges;
   s["seam_branches"] = g.cut.branches.size();
   s["cut_mesh_vertices"] = g.cut.num_wedges();

@@ -50,6 +50,23 @@ void check_edge_length_scale(const GParamOptions& o, double area) {
   throw InputError(why);
 }
 
+// What takes closed surfaces only (docs/gparam.md, "Surfaces with boundary"): the rounding to
+// the integer grid (the boundary would have to lie on grid lines), the fields made from cones
+// or made parallel (their holonomy solve), and the unit field.
+void check_boundary_options(const GParamOptions& o, const SurfaceGraph& g, const std::string& source) {
+  if (!g.has_boundary()) return;
+  const char* flag = o.integer_grid         ? "--integer-grid"
+                     : o.cones              ? "--cones"
+                     : o.parallel_field     ? "--parallel"
+                     : !o.field && !o.curvature_field && o.field_options.unit ? "--field unit"
+                                                                              : nullptr;
+  if (!flag) return;
+  throw InputError((source.empty() ? std::string("gparam") : source) + ": the surface has " +
+                   std::to_string(g.num_boundary_loops) + " boundary loop(s); " + flag +
+                   " takes closed surfaces only (the smoothest, curvature and given fields and every method take "
+                   "surfaces with boundary)");
+}
+
 void say(const GParamOptions& o, const std::string& line) {
   if (o.progress) o.progress(line);
 }
@@ -224,21 +241,18 @@ void note_values_off_the_grid(GParamOutcome& out) {
   out.result.message = why + out.result.message;
 }
 
-// fd against the field's frames or ARAP, measured at unit size (a uniform scale of the
-// surface and the map leaves every Jacobian as it is), weighted by the surface's areas.
-MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitSize& unit, const CutGraph& cut,
-                                          const Eigen::MatrixXd& X) {
-  const Eigen::MatrixXd unit_map = X / unit.scale;
-  MapDistortion d = o.measure == Measure::FieldDeviation
-                        ? frame_distortion(*unit.problem, unit_map)
-                        : map_distortion(*unit.mesh, corner_images(cut.corner_wedge, unit_map), Measure::Arap);
+// fd against the field's frames or ARAP, in the faces' own frames (a flat surface too),
+// measured at unit size (a uniform scale of the surface and the map leaves every Jacobian as
+// it is), weighted by the surface's areas.
+MapDistortion distortion_in_surface_units(const GParamOptions& o, const UnitSize& unit, const Eigen::MatrixXd& X) {
+  MapDistortion d = frame_distortion(*unit.problem, X / unit.scale, o.measure);
   d.weights *= unit.scale * unit.scale;
   return d;
 }
 
 void measure(const Mesh& mesh, const GParamOptions& o, const UnitSize& unit, GParamOutcome& out) {
   const Eigen::MatrixXd& X = out.result.positions;
-  out.measured = distortion_in_surface_units(o, unit, out.cut, X);
+  out.measured = distortion_in_surface_units(o, unit, X);
   out.mapped = mesh;
   out.mapped.UV = X / out.edge_length;
   out.mapped.FUV = out.cut.corner_wedge;
@@ -261,9 +275,13 @@ GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const
   GParamOutcome out;
   const auto t0 = std::chrono::steady_clock::now();
   check_element_measures(mesh, source.empty() ? "gparam" : source);  // read_mesh's check, for meshes built in code
-  out.graph = surface_graph(mesh, source);
+  out.graph = surface_graph(mesh, source, /*allow_boundary=*/true);
+  check_boundary_options(o, out.graph, source);
   out.graph_time_s = seconds_since(t0);
-  say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges, " + fixed(out.graph_time_s) + " s");
+  say(o, "surface graph: " + std::to_string(out.graph.num_edges()) + " edges" +
+             (out.graph.has_boundary() ? ", " + std::to_string(out.graph.num_boundary_loops) + " boundary loop(s)"
+                                       : std::string()) +
+             ", " + fixed(out.graph_time_s) + " s");
   UnitSize unit;
   unit.scale = unit_size_scale(mesh);
   const Mesh scaled = unit.scale != 1 ? scaled_down(mesh, unit.scale) : Mesh();

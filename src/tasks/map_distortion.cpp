@@ -95,7 +95,7 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
   return map_distortion(rest, corner_images(rest.F, X), measure);
 }
 
-MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
+MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X, Measure measure) {
   check_problem(p, "frame_distortion");
   check_map(p, X, "frame_distortion");
   MapDistortion d;
@@ -105,7 +105,7 @@ MapDistortion frame_distortion(const Problem& p, const Eigen::MatrixXd& X) {
   d.weights = p.weights;
   for (int e = 0; e < E; ++e) {
     const Eigen::MatrixXd J = p.jacobian(e, X);
-    d.distortion(e) = (J - p.target(e)).norm();
+    d.distortion(e) = measure == Measure::FieldDeviation ? (J - p.target(e)).norm() : distortion(measure, J, p.target(e));
     d.flipped(e) = is_flipped(J) ? 1 : 0;
   }
   d.stats = distortion_stats(d.distortion, d.weights);

@@ -59,7 +59,9 @@ void add_copies(const SurfaceGraph& g, const CutGraph& c, Problem& p) {
       const int e = g.face_edges(f, (g.fan_corners[begin + k] + 2) % 3);
       if (c.cut[e]) R = quarter_rotation(g.edge_faces(e, 0) == f ? -c.matching[e] : c.matching[e]) * R;
     }
-    if (!R.isIdentity(1e-12))  // the transitions around v do not close: v holds still
+    // The transitions around an interior v do not close: v holds still (a boundary vertex's
+    // fan is open: its copies move together whatever rotation its last one has).
+    if (!g.boundary_vertex[v] && !R.isIdentity(1e-12))
       for (int k = 0; k < m; ++k) p.copy_base[c.corner_wedge(g.fan_faces[begin + k], g.fan_corners[begin + k])] = -1;
   }
 }
@@ -83,7 +85,7 @@ BranchEnds branch_ends(const Mesh& mesh, const SurfaceGraph& g, const CutGraph& 
 }
 
 Problem seamless_problem(const Mesh& mesh, const SurfaceGraph& g, const CutGraph& c) {
-  Problem p = make_problem(cut_mesh(mesh, c));
+  Problem p = make_surface_problem(cut_mesh(mesh, c));  // face frames even on a flat surface: the targets'
   add_targets(c, p);
   add_transitions(mesh, g, c, p);
   add_copies(g, c, p);

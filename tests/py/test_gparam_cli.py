@@ -113,6 +113,47 @@ class GParam(CubeCase):
         self.assertEqual(len(fs), s["elements"])
         self.assertTrue(all("/" in l for l in fs))
 
+    def test_surfaces_with_boundary(self):
+        """A cube with one grid cell cut out of a side (a square hole: its corners are -1/4 on
+        the boundary) and a cube without its top (a box: its bottom corners +1/4 inside, its rim
+        straight): the field follows the boundary, Poincare-Hopf holds with the boundary's
+        indices, and every method maps them without distortion."""
+        lines, _ = cube_obj()
+        verts = [l for l in lines if l.startswith("v ")]
+        faces = [l for l in lines if l.startswith("f ")]
+        height = [float(v.split()[3]) for v in verts]
+        top = [f for f in faces if all(height[int(i) - 1] == 2.0 for i in f.split()[1:])]
+        cases = {
+            "hole.obj": (faces[:8] + faces[10:], 1, {(1, False): 8, (-1, True): 4}),  # the centre cell of a side
+            "box.obj": ([f for f in faces if f not in top], 1, {(1, False): 4}),
+        }
+        for name, (kept, chi, counts) in cases.items():
+            used = sorted({int(i) for f in kept for i in f.split()[1:]})
+            new = {old: k + 1 for k, old in enumerate(used)}  # without the vertices no face uses
+            kept = ["f " + " ".join(str(new[int(i)]) for i in f.split()[1:]) for f in kept]
+            mesh = self.write(name, "\n".join([verts[i - 1] for i in used] + kept) + "\n")
+            for method in ("l2", "linf", "relax"):
+                s = self.gparam(mesh, "-o", self.out("uv.obj"), "--method", method)
+                self.assertEqual(s["status"], "solved", (name, method))
+                self.assertEqual(s["boundary_loops"], 1)
+                self.assertEqual(s["euler_characteristic"], chi)
+                found = {}
+                for x in s["singularity_indices"]:
+                    key = (x["index"], x.get("boundary", False))
+                    found[key] = found.get(key, 0) + 1
+                self.assertEqual(found, counts, name)
+                self.assertEqual(sum(x["index"] for x in s["singularity_indices"]), 4 * chi)
+                self.assertLess(s["max_distortion"], 1e-6, (name, method))
+                self.assertLess(s["seam_error"], 1e-9)
+        # The box with the top's inner vertices still listed: named as unused, not as a boundary.
+        unused = self.write("unused.obj", "\n".join(verts + cases["box.obj"][0]) + "\n")
+        p = run("gparam", unused, "-o", self.out("bad.obj"), check_code=1)
+        self.assertIn("belongs to no face", p.stderr)
+        self.assertFalse(os.path.exists(self.out("bad.obj")))
+        report = self.out("box_report")
+        run("gparam", self.out("box.obj"), "--report", report, "--quiet")
+        self.assertTrue(os.path.exists(os.path.join(report, "index.html")))
+
     def test_integer_grid(self):
         # The cube of side 2 at h = 0.5 with its edge-aligned field: its corners are 4 grid units
         # apart, so the rounded map keeps distortion 0, with every corner and seam translation on
@@ -292,7 +333,8 @@ class GParam(CubeCase):
         two += [f"f {' '.join(str(int(i) + nv) for i in l.split()[1:])}" for l in lines if l.startswith("f ")]
         self.expect_bad([self.write("two.obj", "\n".join(two) + "\n")], ["2 connected components"])
         open_box = [l for l in lines if not l.startswith("f ")] + [l for l in lines if l.startswith("f ")][2:]
-        self.expect_bad([self.write("open.obj", "\n".join(open_box) + "\n")], ["boundary"])
+        self.expect_bad([self.write("open.obj", "\n".join(open_box) + "\n"), "--integer-grid"],
+                        ["open.obj", "1 boundary loop", "--integer-grid", "closed surfaces"])
         fins = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"
         self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
         self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])

@@ -1,11 +1,12 @@
 #pragma once
-// The cut that turns a closed surface into a disk through every singularity, the field
-// combed across the uncut edges, the matchings across the cut, and the cut mesh's vertices
-// (wedges) (docs/gparam.md, "The cut").
+// The cut that turns a surface into a disk through every singularity, the field combed
+// across the uncut edges, the matchings across the cut, and the cut mesh's vertices (wedges)
+// (docs/gparam.md, "The cut").
 //
-// - A spanning tree of the dual graph (breadth first from face 0); the primal edges it does
-//   not cross form a graph with 2g independent loops; edges ending at a non-singular vertex
-//   of degree 1 are pruned until none is left. The rest is the cut.
+// - A spanning tree of the dual graph (breadth first from face 0); the interior primal edges
+//   it does not cross form, with the boundary, a graph with 2g + b - 1 independent loops (b
+//   boundary loops); edges ending at a non-singular interior vertex of degree 1 are pruned
+//   until none is left. The rest is the cut: seams only (boundary edges are never cut).
 // - Combing walks the same tree: each face takes the one of its four directions closest to
 //   its parent's transported direction, so the matching is the identity across every tree
 //   edge (and across the pruned ones: the field's turn around a regular vertex is a whole

@@ -6,6 +6,13 @@
 //   index(v) = (K_v + sum_j delta_j) / (2 pi),
 // a multiple of 1/4; the indices sum to the Euler characteristic (Poincare-Hopf). Never the
 // sum of mismatches mod 4, which loses negative indices and breaks Poincare-Hopf.
+// A boundary vertex's fan is open (f_0 .. f_{m-1}, m - 1 turns) and K_v = pi - (the angles at
+// v), the boundary's turn there, and the sum takes two more turns: from the boundary side
+// leaving v to the field in f_0, and from the field in f_{m-1} to the side reaching v, each
+// modulo pi/2 in (-pi/4, pi/4] (zero for a field along the boundary). The index is again a
+// multiple of 1/4 (+1/4 at a square's corner, -1/4 at a reflex right angle, 0 where the
+// boundary runs straight) and Poincare-Hopf holds with it (docs/gparam.md, "Surfaces with
+// boundary").
 #include <Eigen/Core>
 #include <vector>
 
@@ -15,7 +22,8 @@
 
 namespace strictmin {
 
-// Angle defect 2 pi - sum of the corner angles at each vertex (#V).
+// Angle defect 2 pi - sum of the corner angles at each vertex (#V); pi - the sum at a
+// boundary vertex.
 Eigen::VectorXd angle_defects(const Mesh& mesh, const SurfaceGraph& graph);
 
 // The index of every vertex in quarters (#V integers) and, in *raw if given, the unrounded

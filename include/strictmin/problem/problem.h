@@ -88,6 +88,11 @@ struct Problem {
 // check_mesh_structure refuses and for a mesh without elements.
 Problem make_problem(const Mesh& mesh);
 
+// The same with every triangle of a 3D surface in its own frame, even when the surface is
+// flat (constant z): the frames that targets written per face (local_frame_coordinates'
+// x axis along the first edge) are in, as the seamless problem's are.
+Problem make_surface_problem(const Mesh& mesh);
+
 // Per-element isometric 2D frame of a 3D triangle: returns the corners' 2D coordinates
 // (3 by 2), first corner at the origin, first edge along the x axis.
 Eigen::Matrix<double, 3, 2> local_frame_coordinates(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,

@@ -1,5 +1,5 @@
 #pragma once
-// Global seamless parametrization of a closed surface guided by a cross field (the paper's
+// Global seamless parametrization of a surface guided by a cross field (the paper's
 // Appendix A; docs/gparam.md): field -> singularities -> cut and matchings -> seamless
 // Problem (seams as linear equalities) -> any method -> per-corner UV.
 #include <Eigen/Core>
@@ -96,8 +96,12 @@ struct GParamOutcome {
   double field_time_s = 0, cut_time_s = 0, solve_time_s = 0;
 };
 
-// Throws InputError (naming `source`) for a mesh that is not one closed manifold surface,
-// a bad field, a non-positive edge length or quad count, or a measure other than fd/arap.
+// Takes closed surfaces and surfaces with boundary (the field then follows the boundary,
+// which stays free in the map; docs/gparam.md, "Surfaces with boundary").
+// Throws InputError (naming `source`) for a mesh that is not one manifold surface, a bad
+// field, a non-positive edge length or quad count, a measure other than fd/arap, or, on a
+// surface with boundary, the options that take closed surfaces only (integer grid, cones,
+// parallel, unit field).
 GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& options, const std::string& source = "");
 
 }  // namespace strictmin

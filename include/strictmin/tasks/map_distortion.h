@@ -40,9 +40,11 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
 Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X);
 
 // Field deviation against a problem's own targets (parametrization frames, the cross field):
-// D_T = ||J_T - R_T||_F of the map X (#V by n), flips from the Jacobians' signs. Throws
+// D_T = ||J_T - R_T||_F of the map X (#V by n), flips from the Jacobians' signs; another
+// measure (arap, ...) of the same Jacobians, taken in the problem's element frames. Throws
 // InputError for a problem that fails check_problem or an X of another size.
 struct Problem;
-MapDistortion frame_distortion(const Problem& problem, const Eigen::MatrixXd& X);
+MapDistortion frame_distortion(const Problem& problem, const Eigen::MatrixXd& X,
+                               Measure measure = Measure::FieldDeviation);
 
 }  // namespace strictmin
