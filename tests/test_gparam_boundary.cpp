@@ -7,6 +7,7 @@
 #include <complex>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <random>
 
@@ -142,6 +143,49 @@ void expect_disk_cut(const Mesh& m, const GParamOutcome& g, const std::string& n
     }
 }
 
+// Every interior vertex's UV angles (the corners' angles in the map, signed) add up to
+// 2 pi (1 - index): the cones the map really has are the ones reported.
+void expect_map_cones_match_indices(const Mesh& m, const GParamOutcome& g, const std::string& name) {
+  std::vector<double> angle(m.num_vertices(), 0.0);
+  for (int f = 0; f < m.num_elements(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d p = g.mapped.UV.row(g.cut.corner_wedge(f, i)).transpose();
+      const Eigen::Vector2d a = g.mapped.UV.row(g.cut.corner_wedge(f, (i + 1) % 3)).transpose() - p;
+      const Eigen::Vector2d b = g.mapped.UV.row(g.cut.corner_wedge(f, (i + 2) % 3)).transpose() - p;
+      angle[m.F(f, i)] += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    }
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (!g.graph.boundary_vertex[v]) {
+      EXPECT_NEAR(angle[v], 2 * std::numbers::pi * (1 - g.quarters[v] / 4.0), 1e-6) << name << ": vertex " << v;
+    }
+}
+
+Mesh mesh_of(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3i>& faces) {
+  Mesh m;
+  m.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (size_t v = 0; v < points.size(); ++v) m.V.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
+  m.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f)
+    m.F.row(static_cast<Eigen::Index>(f)) = (faces[f] - Eigen::Vector3i::Ones()).transpose();
+  return m;
+}
+
+// A unit square with its corners cut at 45 degrees, 26 faces (a Delaunay triangulation of
+// random inner points): where a boundary side is at 45 degrees to the field, the field's
+// turns are pi/4 to rounding.
+Mesh chamfered_square() {
+  return mesh_of({{0.2, 0, 0}, {0.4, 0, 0}, {0.6, 0, 0}, {0.8, 0, 0}, {1, 0.2, 0}, {1, 0.4, 0}, {1, 0.6, 0},
+                  {1, 0.8, 0}, {0.8, 1, 0}, {0.6, 1, 0}, {0.4, 1, 0}, {0.2, 1, 0}, {0, 0.8, 0}, {0, 0.6, 0},
+                  {0, 0.4, 0}, {0, 0.2, 0}, {0.2616121342493164, 0.29849114341412331, 0},
+                  {0.600100525965654, 0.72856052681179462, 0}, {0.2749693679060381, 0.65743301487559258, 0},
+                  {0.562265662780428, 0.15006226330533612, 0}, {0.43263079080478717, 0.66929729857452025, 0},
+                  {0.39162483308002616, 0.18725256972009807, 0}},
+                 {{20, 4, 5},   {6, 20, 5},   {20, 3, 4},   {17, 16, 1},  {18, 8, 9},   {20, 18, 21}, {6, 18, 20},
+                  {10, 18, 9},  {11, 18, 10}, {18, 11, 21}, {2, 3, 20},   {22, 20, 21}, {17, 22, 21}, {22, 2, 20},
+                  {2, 22, 1},   {22, 17, 1},  {17, 15, 16}, {19, 17, 21}, {14, 19, 13}, {15, 19, 14}, {19, 15, 17},
+                  {19, 12, 13}, {19, 11, 12}, {11, 19, 21}, {18, 7, 8},   {7, 18, 6}});
+}
+
 std::vector<std::filesystem::path> disk_meshes() {
   const std::filesystem::path dir = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk";
   std::vector<std::filesystem::path> out;
@@ -275,6 +319,53 @@ TEST(BoundaryMap, EveryMethodMapsPolycubePiecesWithZeroDistortion) {
     }
 }
 
+// Turns of exactly pi/4 (to rounding): a right isosceles triangle (its 45-degree corners
+// meet the field along the other side at 45 degrees) and the chamfered square. Each edge's
+// turn is taken once for both its ends, and the cut's matchings from the same turns: the
+// indices add up to 4 chi, the seams hold, and the map's cones are the ones reported (the
+// indices summed to 5 and 7, and the chamfered square's seams were off by 24 to 28 units,
+// each end of an edge rounding its pi/4 its own way).
+TEST(BoundaryMap, TurnsOfAnEighthOfATurnAgreeEverywhere) {
+  const std::vector<std::pair<const char*, Mesh>> meshes = {
+      {"right triangle", mesh_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{1, 2, 3}})}, {"chamfered square", chamfered_square()}};
+  for (const auto& [name, m] : meshes)
+    for (Method method : {Method::L2, Method::Linf, Method::Relax, Method::Direct}) {
+      const GParamOutcome g = global_parametrize(m, options(method), name);
+      expect_poincare_hopf(m, g, name);
+      EXPECT_LT(g.seam_error, 1e-9) << name << " " << method_name(method);
+      EXPECT_EQ(g.result.status, SolveStatus::Solved) << name << " " << method_name(method);
+      expect_map_cones_match_indices(m, g, std::string(name) + " " + method_name(method));
+    }
+}
+
+// A round disk of two rings of 12 around a centre, symmetric: the smoothest field along its
+// boundary has one singularity of index +1 at the centre (a cone of angle 0: every method
+// collapsed the whole map, 36 of 36 faces flipped, and said solved). Spread over the ring it
+// becomes four +1/4, and the map is a proper one.
+TEST(BoundaryField, AFullTurnSingularityIsSpread) {
+  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
+  for (int ring = 1; ring <= 2; ++ring)
+    for (int k = 0; k < 12; ++k)
+      points.emplace_back(0.5 * ring * std::cos(k * std::numbers::pi / 6), 0.5 * ring * std::sin(k * std::numbers::pi / 6), 0);
+  std::vector<Eigen::Vector3i> faces;
+  for (int k = 0; k < 12; ++k) {
+    const int a = 2 + k, b = 2 + (k + 1) % 12, c = 14 + k, d = 14 + (k + 1) % 12;  // 1-based
+    faces.emplace_back(1, a, b);
+    faces.emplace_back(a, c, d);
+    faces.emplace_back(a, d, b);
+  }
+  const Mesh disk = mesh_of(points, faces);
+  const GParamOutcome g = global_parametrize(disk, options(Method::Linf), "round disk");
+  EXPECT_GE(g.spread_singularities, 1);
+  EXPECT_EQ(g.full_turn_singularities, 0);
+  EXPECT_EQ(index_counts(g.singular, g.graph, false), (std::map<int, int>{{1, 4}}));
+  expect_poincare_hopf(disk, g, "round disk");
+  EXPECT_EQ(g.measured.stats.flipped, 0);
+  EXPECT_LT(g.measured.stats.max, 0.9);
+  EXPECT_LT(g.seam_error, 1e-9);
+  expect_map_cones_match_indices(disk, g, "round disk");
+}
+
 // A disk with no interior singularity has no seam: the field's map is a free-boundary
 // parametrization against the field's frames.
 TEST(BoundaryMap, AFlatSquareHasNoSeam) {
@@ -310,6 +401,7 @@ TEST(BoundarySharedMeshes, PoincareHopfSeamsAndStrictOrder) {
       }
       if (method == Method::Linf) {
         EXPECT_LE(g.result.lower_bound, g.measured.stats.max + 1e-12) << file;
+        expect_map_cones_match_indices(m, g, file.string());
       }
     }
     EXPECT_LT(top[Method::Linf], top[Method::L2]) << file;

@@ -200,6 +200,9 @@ CrossField cone_cross_field(const Mesh& mesh, const SurfaceGraph& g, const FaceF
                             const std::string& source) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("cross field options: " + why);
+  if (g.has_boundary())  // gparam refuses --cones and --parallel by name first
+    throw InputError("cross field: fields from cones take closed surfaces only (the surface has " +
+                     std::to_string(g.num_boundary_loops) + " boundary loop(s))");
   if (options.pin_face >= g.num_faces)  // as smoothest_cross_field (it was ignored here)
     throw InputError("cross field: pin_face " + std::to_string(options.pin_face) + " is beyond the mesh's " +
                      std::to_string(g.num_faces) + " faces");

@@ -1,5 +1,6 @@
 // Cut graph, combing, matchings and wedges (docs/gparam.md, "The cut").
 #include "strictmin/field/cut_graph.h"
+#include "strictmin/field/singularities.h"
 
 #include <cmath>
 #include <complex>
@@ -65,24 +66,28 @@ void prune_cut(const SurfaceGraph& g, const std::vector<int>& quarters, CutGraph
   for (int e = 0; e < g.num_edges(); ++e) c.num_cut_edges += c.cut[e];
 }
 
-// Each face's direction closest to its tree parent's transported direction.
-void comb(const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u, const std::vector<int>& order,
-          const std::vector<int>& parent_edge, CutGraph& c) {
+// Each face's direction closest to its tree parent's transported direction: the parent's
+// combed direction moved across the edge and turned by the field's turn there
+// (field_edge_turns, the turns the indices add up), so that the matchings, the combed turns
+// less those same turns, agree with the indices even where a turn is pi/4 to rounding (a turn
+// measured again here could round to the other side of pi/4 and put a quarter turn on an
+// uncut edge).
+void comb(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u,
+          const std::vector<int>& order, const std::vector<int>& parent_edge, CutGraph& c) {
+  const std::vector<double> field_turns = field_edge_turns(mesh, g, fr, u);
+  auto turn_from = [&](int e, int f) { return g.edge_faces(e, 0) == f ? field_turns[e] : -field_turns[e]; };
   c.combed.resize(g.num_faces);
   c.combed(order[0]) = std::arg(u(order[0])) / 4.0;
   for (size_t k = 1; k < order.size(); ++k) {
     const int h = order[k], e = parent_edge[h];
     const int f = g.edge_faces(e, 0) == h ? g.edge_faces(e, 1) : g.edge_faces(e, 0);
-    const double moved = c.combed(f) + transport_from(g, fr, e, f);
-    double delta = std::arg(u(h) / std::polar(1.0, 4.0 * moved)) / 4.0;
-    if (delta <= -std::numbers::pi / 4) delta += kQuarter;
-    c.combed(h) = moved + delta;
+    c.combed(h) = c.combed(f) + transport_from(g, fr, e, f) + turn_from(e, f);
   }
   c.matching.assign(g.num_edges(), 0);
   for (int e = 0; e < g.num_edges(); ++e) {
     if (g.is_boundary_edge(e)) continue;
     const double turn = c.combed(g.edge_faces(e, 1)) - c.combed(g.edge_faces(e, 0)) - fr.transport(e);
-    const long k = std::lround(turn / kQuarter);
+    const long k = std::lround((turn - field_turns[e]) / kQuarter);
     c.matching[e] = static_cast<int>(((k % 4) + 4) % 4);
   }
 }
@@ -158,13 +163,13 @@ Eigen::Matrix2d quarter_rotation(int k) {
   return R;
 }
 
-CutGraph cut_graph(const Mesh&, const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u,
+CutGraph cut_graph(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, const Eigen::VectorXcd& u,
                    const std::vector<int>& quarters) {
   CutGraph c;
   std::vector<int> parent_edge;
   const std::vector<int> order = dual_tree(g, c, parent_edge);
   prune_cut(g, quarters, c);
-  comb(g, fr, u, order, parent_edge, c);
+  comb(mesh, g, fr, u, order, parent_edge, c);
   wedges(g, c);
   branches(g, quarters, c);
   return c;

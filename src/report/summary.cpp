@@ -1,5 +1,6 @@
 #include "summary.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "runtime/blas_kernels.h"
@@ -184,11 +185,15 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["singularities"] = g.singular.size();
   s["singularity_indices"] = singularity_list(g.singular, g.graph);
   s["boundary_loops"] = g.graph.num_boundary_loops;
+  s["spread_singularities"] = g.spread_singularities;
+  s["full_turn_singularities"] = g.full_turn_singularities;
   s["seam_edges"] = g.cut.num_cut_edges;
   s["seam_branches"] = g.cut.branches.size();
   s["cut_mesh_vertices"] = g.cut.num_wedges();
   s["edge_length"] = g.edge_length;
-  s["seam_error"] = g.seam_error;
+  s["seam_error"] = g.seam_error;  // UV units: grows as 1/h with the map's size
+  const double uv_size = g.mapped.UV.size() > 0 ? (g.mapped.UV.colwise().maxCoeff() - g.mapped.UV.colwise().minCoeff()).norm() : 0;
+  s["seam_error_relative"] = g.seam_error / std::max(1.0, uv_size);  // against the UV bounding box's diagonal
   s["integer_grid"] = o.integer_grid;
   if (o.integer_grid) {
     s["grid_guide"] = g.grid_guide == GParamOptions::GridGuide::Linf ? "linf" : "l2";  // the one followed

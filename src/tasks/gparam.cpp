@@ -103,6 +103,10 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
     out.field = smoothest_cross_field(mesh, out.graph, out.frames, o.field_options);
   }
   out.quarters = vertex_indices(mesh, out.graph, out.frames, out.field.u);
+  if (!o.field && !o.cones) {  // a computed field: no cone of angle 0 (singularities.h)
+    out.spread_singularities = spread_full_turn_singularities(mesh, out.graph, out.frames, out.field.u, out.quarters);
+    if (out.spread_singularities > 0) out.field.energy = field_energy(out.field.u, mesh, out.graph, out.frames);
+  }
   std::vector<int> wanted = o.cones ? *o.cones : std::vector<int>();
   if (o.makes_field_parallel()) {
     wanted = out.quarters;
@@ -112,19 +116,29 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
   // The cones asked for that the parallel field does not have (cone_field.h).
   for (size_t v = 0; v < wanted.size(); ++v) out.cones_missed += wanted[v] != out.quarters[v];
   out.singular = singularities(out.quarters);
+  for (const Singularity& s : out.singular) out.full_turn_singularities += s.quarters >= 4 && !out.graph.boundary_vertex[s.vertex];
   out.field_time_s = seconds_since(t0);
   const CrossFieldTiming& t = out.field.timing;
   std::string split;
   const std::string kind = o.field_kind();
   if (!o.field && !o.cones)
     split = " (assemble " + fixed(t.assemble_s) + ", analyse " + fixed(t.analyze_s) + ", factorize " + fixed(t.factorize_s) +
-            (o.curvature_field ? std::string() : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) +
+            (o.curvature_field ? std::string()
+             : out.graph.has_boundary()
+                 ? ", one solve with the boundary faces fixed " + fixed(t.iterate_s)
+                 : ", " + std::to_string(out.field.iterations) + " Lanczos steps " + fixed(t.iterate_s)) +
             (kind == "unit" ? ", " + std::to_string(out.field.unit_steps) + " unit steps " + fixed(t.unit_s) + " from energy " +
                         std::to_string(out.field.eigen_energy)
                   : std::string()) +
             ")";
   if (o.makes_field_parallel())
     split += ", made parallel in " + fixed(t.parallel_s) + " s from energy " + std::to_string(out.field_energy_before_parallel);
+  if (out.spread_singularities > 0)
+    split += "; " + std::to_string(out.spread_singularities) +
+             " singularities of index +1 or more spread over their neighbours (cones of angle 0 cannot be mapped)";
+  if (out.full_turn_singularities > 0)
+    split += "; warning: " + std::to_string(out.full_turn_singularities) +
+             " vertices have index +1 or more (cones of angle 0): every map collapses around them";
   if (out.cones_missed > 0)
     split += "; warning: " + std::to_string(out.cones_missed) +
              " vertices' indices differ from the cones asked for (the field would turn by more than pi/4 between two "
@@ -271,6 +285,12 @@ void measure(const Mesh& mesh, const GParamOptions& o, const UnitSize& unit, GPa
 }  // namespace
 
 GParamOutcome global_parametrize(const Mesh& mesh, const GParamOptions& o, const std::string& source) {
+  if (mesh.dim() == 2 && mesh.element_type() == ElementType::Triangle) {  // a planar domain: the plane z = 0
+    Mesh lifted = mesh;
+    lifted.V.conservativeResize(Eigen::NoChange, 3);
+    lifted.V.col(2).setZero();
+    return global_parametrize(lifted, o, source);
+  }
   check_options(o);
   GParamOutcome out;
   const auto t0 = std::chrono::steady_clock::now();

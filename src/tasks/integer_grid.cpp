@@ -292,6 +292,9 @@ IntegerGridRounding round_to_integer_grid(const Mesh& mesh, const SurfaceGraph& 
                                           const std::vector<Singularity>& singular, double h, Problem& problem,
                                           const std::function<void(const std::string&)>& progress,
                                           const IntegerGridOptions& options) {
+  if (graph.has_boundary())  // gparam refuses the flag by name first
+    throw InputError("integer-grid rounding takes closed surfaces only (the surface has " +
+                     std::to_string(graph.num_boundary_loops) + " boundary loop(s))");
   const auto t0 = std::chrono::steady_clock::now();
   IntegerGridRounding out;
   GridValues values;

@@ -100,12 +100,11 @@ def test_progress_records(closed):
 
 def test_bad_input(closed):
     _, V, F = closed
-    Vd, Fd = saddle(3)  # a disk: it has a boundary
-    with pytest.raises(ValueError, match="boundary|closed"):
-        strictmin.gparam(Vd, Fd)
-    Vp, Fp = grid(2)
-    with pytest.raises(ValueError):
-        strictmin.gparam(Vp, Fp)
+    Vd, Fd = saddle(3)  # a disk: mapped (test_surface_with_boundary), but not with the closed-only options
+    with pytest.raises(ValueError, match="boundary loop.*--integer-grid"):
+        strictmin.gparam(Vd, Fd, integer_grid=True)
+    with pytest.raises(ValueError, match="boundary loop.*--parallel"):
+        strictmin.gparam(Vd, Fd, parallel=True)
     with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
         strictmin.gparam(V, F, edge_length=0)
     with pytest.raises(ValueError, match="edge_length must be a positive finite number"):
@@ -199,3 +198,26 @@ def test_cones_out_of_range_and_empty(closed):
             strictmin.gparam(V, F, cones=cones)
     with pytest.raises(ValueError, match=f"cones: 0 cone indices for {len(V)} vertices"):
         strictmin.gparam(V, F, cones=[])
+
+
+def test_surface_with_boundary(tmp_path):
+    """A saddle-shaped disk: the field follows the boundary, Poincare-Hopf holds with the
+    boundary's indices (chi 1), and the module gives the command line's map; a planar square
+    grid (#V by 2) is mapped without distortion (its field is parallel to the sides)."""
+    V, F = saddle(8)
+    path = tmp_path / "saddle.obj"
+    with open(path, "w") as f:
+        f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F)
+    summary, dist = cli_run(tmp_path, ["gparam", str(path), "--method", "linf", "--quads", 60])
+    r = strictmin.gparam(V, F, method="linf", quads=60)
+    np.testing.assert_allclose(r.distortion, dist, rtol=0, atol=1e-12)
+    same_summary(r.summary, summary)
+    assert r.boundary_loops == 1 == summary["boundary_loops"]
+    assert r.euler_characteristic == 1
+    assert sum(q for _, q in r.singularities) == 4
+    assert r.seam_error < 1e-9
+    flat = strictmin.gparam(*grid(6), method="linf", quads=30)
+    assert flat.boundary_loops == 1
+    assert sorted(q for _, q in flat.singularities) == [1, 1, 1, 1]  # the square's corners
+    assert flat.summary["max_distortion"] < 1e-9

@@ -26,10 +26,29 @@ namespace strictmin {
 // boundary vertex.
 Eigen::VectorXd angle_defects(const Mesh& mesh, const SurfaceGraph& graph);
 
+// The field's turn across every edge (#E), computed once per edge so that its two ends see
+// opposite turns (a turn of exactly pi/4 taken separately at both ends would not cancel): across
+// an interior edge, from edge_faces(e, 0) to edge_faces(e, 1) relative to transport, in
+// (-pi/4, pi/4]; on a boundary edge, from its side (as its face runs it) to the field in its
+// face, modulo pi/2 in (-pi/4, pi/4]. The cut's matchings are taken from the same turns.
+std::vector<double> field_edge_turns(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
+                                     const Eigen::VectorXcd& u);
+
 // The index of every vertex in quarters (#V integers) and, in *raw if given, the unrounded
 // 4 (K_v + sum delta) / (2 pi) (within rounding of an integer).
 std::vector<int> vertex_indices(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
                                 const Eigen::VectorXcd& u, std::vector<double>* raw = nullptr);
+
+// A field with an interior singularity of index +1 or more (quarters >= 4: a cone of angle 0
+// or less, which no seamless map can have; every method then collapses the map around it) can
+// come out of the smoothest field on a symmetric surface (a round disk, a hemisphere). Such a
+// vertex's fan is given its first face's direction moved across the fan (faces with a
+// boundary side keep theirs), which sends the field's full turn out to the vertices around
+// the fan, where it falls as smaller indices; repeated (a few rounds) while a vertex is left
+// at +1 or more. Updates u and quarters; returns the fans changed. docs/gparam.md,
+// "Singularities".
+int spread_full_turn_singularities(const Mesh& mesh, const SurfaceGraph& graph, const FaceFrames& frames,
+                                   Eigen::VectorXcd& u, std::vector<int>& quarters);
 
 struct Singularity {
   int vertex = 0;

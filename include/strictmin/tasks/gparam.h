@@ -77,6 +77,8 @@ struct GParamOutcome {
   FaceFrames frames;
   CrossField field;
   double field_energy_before_parallel = 0;  // parallel_field: the computed field's E before it
+  int spread_singularities = 0;     // computed fields: fans changed to spread index >= +1 singularities
+  int full_turn_singularities = 0;  // interior vertices left with index >= +1 (no map can be injective there)
   int cones_missed = 0;  // cones or parallel_field: vertices whose index differs from the one asked for
   std::vector<int> quarters;  // every vertex's index in quarters
   std::vector<Singularity> singular;
@@ -97,7 +99,8 @@ struct GParamOutcome {
 };
 
 // Takes closed surfaces and surfaces with boundary (the field then follows the boundary,
-// which stays free in the map; docs/gparam.md, "Surfaces with boundary").
+// which stays free in the map; docs/gparam.md, "Surfaces with boundary"); a planar mesh
+// (#V by 2) is the surface z = 0.
 // Throws InputError (naming `source`) for a mesh that is not one manifold surface, a bad
 // field, a non-positive edge length or quad count, a measure other than fd/arap, or, on a
 // surface with boundary, the options that take closed surfaces only (integer grid, cones,
