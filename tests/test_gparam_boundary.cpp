@@ -25,9 +25,11 @@
 #include "strictmin/report/strict_order.h"
 #include "strictmin/tasks/gparam.h"
 #include "strictmin/tasks/seamless_problem.h"
+#include "test_meshes.h"
 
 using namespace strictmin;
 using strictmin::test_support::expect_input_error;
+using strictmin::test_support::expect_poincare_hopf;
 
 namespace {
 
@@ -107,20 +109,6 @@ std::map<int, int> index_counts(const std::vector<Singularity>& s, const Surface
   for (const auto& x : s)
     if (static_cast<bool>(g.boundary_vertex[x.vertex]) == boundary) ++counts[x.quarters];
   return counts;
-}
-
-// Sum of indices (quarters) = 4 chi, every raw index within 1e-9 of its rounding (x 4).
-void expect_poincare_hopf(const Mesh& m, const GParamOutcome& g, const std::string& name) {
-  std::vector<double> raw;
-  const std::vector<int> q = vertex_indices(m, g.graph, g.frames, g.field.u, &raw);
-  int sum = 0;
-  double off = 0;
-  for (size_t v = 0; v < q.size(); ++v) {
-    sum += q[v];
-    off = std::max(off, std::abs(raw[v] - q[v]));
-  }
-  EXPECT_EQ(sum, 4 * g.graph.euler_characteristic()) << name;
-  EXPECT_LT(off / 4, 1e-9) << name;
 }
 
 // The cut mesh is one disk: one component, one boundary loop, chi 1; every interior

@@ -1,13 +1,17 @@
 #include "test_meshes.h"
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <random>
 #include <vector>
 
+#include "strictmin/field/singularities.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/mesh/generators.h"
 #include "strictmin/tasks/examples.h"
@@ -89,6 +93,19 @@ FieldComparison linf_against_smoothest(const Mesh& mesh, const std::function<voi
   vary(o);
   out.variant = global_parametrize(mesh, o);
   return out;
+}
+
+void expect_poincare_hopf(const Mesh& m, const GParamOutcome& g, const std::string& name) {
+  std::vector<double> raw;
+  const std::vector<int> q = vertex_indices(m, g.graph, g.frames, g.field.u, &raw);
+  int sum = 0;
+  double off = 0;
+  for (size_t v = 0; v < q.size(); ++v) {
+    sum += q[v];
+    off = std::max(off, std::abs(raw[v] - q[v]));
+  }
+  EXPECT_EQ(sum, 4 * g.graph.euler_characteristic()) << name;
+  EXPECT_LT(off / 4, 1e-9) << name;  // indices are multiples of 1/4 to 1e-9
 }
 
 }  // namespace strictmin::test_support

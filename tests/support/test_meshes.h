@@ -47,4 +47,8 @@ struct FieldComparison {
 };
 FieldComparison linf_against_smoothest(const Mesh& mesh, const std::function<void(GParamOptions&)>& vary);
 
+// Poincare-Hopf on a gparam outcome's field: the indices (quarters) add up to 4 chi and each
+// unrounded index is within 1e-9 (x 4) of its rounding (gtest expectations, naming `name`).
+void expect_poincare_hopf(const Mesh& mesh, const GParamOutcome& g, const std::string& name);
+
 }  // namespace strictmin::test_support
