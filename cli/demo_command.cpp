@@ -153,6 +153,7 @@ int run_demo(const DemoArgs& a) {
   }
   report.sections.push_back(write_param_demo_section(a.out, options, a.output, all_solved));
   report.sections.push_back(write_gparam_demo_section(a.out, options, a.output, all_solved));
+  report.sections.push_back(write_gparam_boundary_demo_section(a.out, options, a.output, all_solved));
   char footer[160];
   std::snprintf(footer, sizeof footer, "Made by `strictmin demo` in %.1f s. Compare your own results with `strictmin "
                 "report DIR --run RESULT.json ...` (docs/report.md).", seconds_since(t0));
@@ -170,7 +171,7 @@ void add_demo_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "demo",
       "Solve the built-in examples (deformations: the paper's Figure 2 square, a bar, the Figure 11 tet bar; a "
-      "spherical cap parametrized under ARAP; a closed genus-1 frame parametrized seamlessly along its cross field) "
+      "spherical cap parametrized under ARAP; a closed genus-1 frame parametrized seamlessly along its cross field, and the same frame with a window cut in it, a surface with boundary) "
       "with L2, L-infinity and the strict minimizer, and write a report to open in a browser: colour-coded "
       "pictures, log-scale histograms and the strict-order verdicts side by side.");
   cmd->add_option("--out,-o", args->out, "Folder for the report (created when missing)")->capture_default_str();

@@ -154,6 +154,7 @@ int run_gparam(const GParamArgs& a) {
                       " flipped, seam error " + shown_number(g.seam_error) +
                       (o.integer_grid ? ", integer-grid error " + shown_number(g.integer_error) : std::string()) + ", " +
                       status_name(g.result.status));
+  for (const std::string& w : g.warnings) progress(a.out, "gparam: warning: " + w);
   const int code = exit_code_for(g.result.status);
   return code == kExitSuccess && !quads_complete ? kExitNotConverged : code;
 }

@@ -202,11 +202,13 @@ struct LoadedRun {
 };
 
 // The rest mesh and handles of "example:NAME": deform's examples, and the surfaces of demo's
-// param and gparam sections, whose summaries say "example:spherical-cap" and
-// "example:bulged-frame".
+// param and gparam sections, whose summaries say "example:spherical-cap",
+// "example:bulged-frame" and "example:bulged-frame-window".
 void load_example_rest(const std::string& name, LoadedRun& r) {
-  if (name == "spherical-cap" || name == "bulged-frame") {
-    r.rest = std::make_shared<Mesh>(name == "spherical-cap" ? demo_spherical_cap() : demo_bulged_frame());
+  if (name == "spherical-cap" || name == "bulged-frame" || name == "bulged-frame-window") {
+    r.rest = std::make_shared<Mesh>(name == "spherical-cap"  ? demo_spherical_cap()
+                                    : name == "bulged-frame" ? demo_bulged_frame()
+                                                             : demo_bulged_frame_window());
     return;
   }
   Example ex = make_example(name);

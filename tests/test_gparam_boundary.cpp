@@ -33,26 +33,12 @@ using strictmin::test_support::expect_poincare_hopf;
 
 namespace {
 
-// The mesh without the faces `drop` selects, its unused vertices removed (renumbered in order).
+// The mesh without the faces `drop` selects, its unused vertices removed.
 template <class Drop>
 Mesh without_faces(const Mesh& m, Drop drop) {
-  std::vector<int> kept;
-  for (int f = 0; f < m.num_elements(); ++f)
-    if (!drop(f)) kept.push_back(f);
-  std::vector<int> index(m.num_vertices(), -1);
-  Mesh out;
-  out.F.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  int next = 0;
-  for (size_t k = 0; k < kept.size(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      int& v = index[m.F(kept[k], i)];
-      if (v < 0) v = next++;
-      out.F(static_cast<Eigen::Index>(k), i) = v;
-    }
-  out.V.resize(next, 3);
-  for (int v = 0; v < m.num_vertices(); ++v)
-    if (index[v] >= 0) out.V.row(index[v]) = m.V.row(v);
-  return out;
+  std::vector<char> dropped(static_cast<std::size_t>(m.num_elements()));
+  for (int f = 0; f < m.num_elements(); ++f) dropped[static_cast<std::size_t>(f)] = drop(f) ? 1 : 0;
+  return without_elements(m, dropped);
 }
 
 // The faces whose three corners have coordinate `axis` equal to `value`.
@@ -86,16 +72,7 @@ Mesh flat_annulus(int n = 2) {
 
 // The frame less the faces of one outer side square (x = 0, 1 <= y <= 2): genus 1, one
 // boundary loop.
-Mesh frame_with_a_window(int n = 2) {
-  const Mesh frame = make_frame_surface(n);
-  return without_faces(frame, [&](int f) {
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::RowVector3d p = frame.V.row(frame.F(f, i));
-      if (std::abs(p.x()) > 1e-12 || p.y() < 1 - 1e-12 || p.y() > 2 + 1e-12) return false;
-    }
-    return true;
-  });
-}
+Mesh frame_with_a_window(int n = 2) { return strictmin::frame_with_a_window(make_frame_surface(n)); }
 
 GParamOptions options(Method m) {
   GParamOptions o;
@@ -346,12 +323,32 @@ TEST(BoundaryField, AFullTurnSingularityIsSpread) {
   const GParamOutcome g = global_parametrize(disk, options(Method::Linf), "round disk");
   EXPECT_GE(g.spread_singularities, 1);
   EXPECT_EQ(g.full_turn_singularities, 0);
+  EXPECT_TRUE(g.warnings.empty());
   EXPECT_EQ(index_counts(g.singular, g.graph, false), (std::map<int, int>{{1, 4}}));
   expect_poincare_hopf(disk, g, "round disk");
   EXPECT_EQ(g.measured.stats.flipped, 0);
   EXPECT_LT(g.measured.stats.max, 0.9);
   EXPECT_LT(g.seam_error, 1e-9);
   expect_map_cones_match_indices(disk, g, "round disk");
+
+  // The same field given by the user (each face's direction along the circles) is kept as it
+  // is: the +1 at the centre stays, the map folds there, and the outcome warns of it.
+  Eigen::MatrixXd circles(disk.num_elements(), 3);
+  for (int f = 0; f < disk.num_elements(); ++f) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i) centre += disk.V.row(disk.F(f, i)).transpose() / 3.0;
+    circles.row(f) = Eigen::Vector3d(-centre.y(), centre.x(), 0).normalized().transpose();
+  }
+  GParamOptions given = options(Method::Linf);
+  given.field = circles;
+  const GParamOutcome kept = global_parametrize(disk, given, "round disk");
+  EXPECT_EQ(kept.spread_singularities, 0);
+  EXPECT_EQ(kept.full_turn_singularities, 1);
+  EXPECT_EQ(index_counts(kept.singular, kept.graph, false), (std::map<int, int>{{4, 1}}));
+  expect_poincare_hopf(disk, kept, "round disk, given field");
+  ASSERT_EQ(kept.warnings.size(), 1u);
+  EXPECT_NE(kept.warnings[0].find("index +1 or more"), std::string::npos) << kept.warnings[0];
+  EXPECT_GT(kept.measured.stats.flipped, 0);
 }
 
 // A disk with no interior singularity has no seam: the field's map is a free-boundary

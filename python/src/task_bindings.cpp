@@ -263,6 +263,7 @@ py::dict gparam_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string
   out["boundary_loops"] = g->graph.num_boundary_loops;
   out["edge_length"] = g->edge_length;
   out["seam_error"] = g->seam_error;
+  out["warnings"] = g->warnings;
   out["field"] = RowMatrixXd(field_directions(g->field, g->frames));
   if (integer_grid) {
     add_integer_grid_attributes(out, *g);

@@ -286,7 +286,9 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
     CLI's --grid-guide). Options: the command line's flags with underscores. Returns a
     Result with ``uv`` (#cut-mesh vertices by 2, the tool's vt) and ``fuv`` (#F by 3 indices
     into uv), ``singularities`` [(vertex, index in quarters)], ``field`` (#F by 3, the field
-    used), ``euler_characteristic``, ``boundary_loops``, ``edge_length``, ``seam_error``."""
+    used), ``euler_characteristic``, ``boundary_loops``, ``edge_length``, ``seam_error``,
+    ``warnings`` (sentences on what the status does not say: full-turn singularities of a
+    given field, cones missed)."""
     V = _vertices(V)
     F = _faces(F)
     directions = None

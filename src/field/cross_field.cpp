@@ -148,7 +148,7 @@ Eigen::VectorXcd boundary_alignment(const Mesh& mesh, const SurfaceGraph& g, con
     for (int i = 0; i < 3; ++i) {
       if (!g.is_boundary_edge(g.face_edges(f, i))) continue;
       const Eigen::Vector3d d = row3(mesh.V, mesh.F(f, (i + 1) % 3)) - row3(mesh.V, mesh.F(f, i));
-      const Complex side = std::polar(1.0, 4.0 * std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f))));
+      const Complex side = std::polar(1.0, 4.0 * fr.angle(f, d));
       sum += side;
       if (d.norm() > longest_length) {
         longest_length = d.norm();
@@ -220,13 +220,18 @@ bool CrossFieldOptions::is_valid(std::string* why) const {
 }
 
 void pin_field_rotation(Eigen::VectorXcd& u, int f, const Eigen::Vector3d& d, const FaceFrames& fr) {
-  const double a = std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f)));
-  u *= std::polar(1.0, 4.0 * a) / u(f);
+  u *= std::polar(1.0, 4.0 * fr.angle(f, d)) / u(f);
 }
 
 double field_edge_weight(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, int e) {
   const double len2 = (mesh.V.row(g.edges(e, 1)) - mesh.V.row(g.edges(e, 0))).squaredNorm();
   return 3.0 * len2 / (fr.area(g.edge_faces(e, 0)) + fr.area(g.edge_faces(e, 1)));
+}
+
+double FaceFrames::angle(int f, const Eigen::Vector3d& d) const { return std::atan2(d.dot(row3(y, f)), d.dot(row3(x, f))); }
+
+double FaceFrames::transport_from(const SurfaceGraph& g, int e, int f) const {
+  return g.edge_faces(e, 0) == f ? transport(e) : -transport(e);
 }
 
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
@@ -251,9 +256,7 @@ FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& g) {
     if (g.is_boundary_edge(e)) continue;
     const Eigen::Vector3d d = row3(mesh.V, g.edges(e, 1)) - row3(mesh.V, g.edges(e, 0));
     const int f = g.edge_faces(e, 0), h = g.edge_faces(e, 1);
-    const double theta_f = std::atan2(d.dot(row3(fr.y, f)), d.dot(row3(fr.x, f)));
-    const double theta_h = std::atan2(d.dot(row3(fr.y, h)), d.dot(row3(fr.x, h)));
-    fr.transport(e) = theta_h - theta_f;
+    fr.transport(e) = fr.angle(h, d) - fr.angle(f, d);
   }
   return fr;
 }
@@ -348,7 +351,7 @@ Eigen::VectorXcd curvature_directions(const Mesh& mesh, const SurfaceGraph& g, c
     const double theta = std::atan2(nf.cross(nh).dot(d.normalized()), nf.dot(nh));
     for (int side : {f, h}) {
       // In-plane normal of the edge at angle a + pi/2: m m^T has (xx - yy)/2 + i xy = -e^{2ia}/2.
-      const double a = std::atan2(d.dot(row3(fr.y, side)), d.dot(row3(fr.x, side)));
+      const double a = fr.angle(side, d);
       q(side) += -0.5 * theta * d.norm() * std::polar(1.0, 2.0 * a);
     }
   }

@@ -12,11 +12,6 @@ namespace {
 
 constexpr double kQuarter = std::numbers::pi / 2;
 
-// Transport across e seen from face f (the header's convention is face 0 -> face 1).
-double transport_from(const SurfaceGraph& g, const FaceFrames& fr, int e, int f) {
-  return g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
-}
-
 // The dual spanning tree (surface_graph.h), its edges marked in c.tree.
 std::vector<int> dual_tree(const SurfaceGraph& g, CutGraph& c, std::vector<int>& parent_edge) {
   const std::vector<int> order = dual_spanning_tree(g, parent_edge);
@@ -81,7 +76,7 @@ void comb(const Mesh& mesh, const SurfaceGraph& g, const FaceFrames& fr, const E
   for (size_t k = 1; k < order.size(); ++k) {
     const int h = order[k], e = parent_edge[h];
     const int f = g.edge_faces(e, 0) == h ? g.edge_faces(e, 1) : g.edge_faces(e, 0);
-    c.combed(h) = c.combed(f) + transport_from(g, fr, e, f) + turn_from(e, f);
+    c.combed(h) = c.combed(f) + fr.transport_from(g, e, f) + turn_from(e, f);
   }
   c.matching.assign(g.num_edges(), 0);
   for (int e = 0; e < g.num_edges(); ++e) {

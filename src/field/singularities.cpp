@@ -22,8 +22,7 @@ double quarter_remainder(double x) {
 
 // The angle of the direction from vertex a to vertex b in face f's frame.
 double side_angle(const Mesh& mesh, const FaceFrames& fr, int f, int a, int b) {
-  const Eigen::Vector3d d = (mesh.V.row(b) - mesh.V.row(a)).transpose();
-  return std::atan2(d.dot(fr.y.row(f).transpose()), d.dot(fr.x.row(f).transpose()));
+  return fr.angle(f, (mesh.V.row(b) - mesh.V.row(a)).transpose());
 }
 
 }  // namespace
@@ -105,7 +104,7 @@ int spread_full_turn_singularities(const Mesh& mesh, const SurfaceGraph& g, cons
       double a = std::arg(u(g.fan_faces[begin])) / 4.0;  // the direction, moved across the fan
       for (int k = begin + 1; k < end; ++k) {
         const int e = g.fan_edge(k - 1), f = g.fan_faces[k - 1], h = g.fan_faces[k];
-        a += g.edge_faces(e, 0) == f ? fr.transport(e) : -fr.transport(e);
+        a += fr.transport_from(g, e, f);
         bool on_boundary = false;
         for (int i = 0; i < 3; ++i) on_boundary = on_boundary || g.is_boundary_edge(g.face_edges(h, i));
         if (!on_boundary) u(h) = std::polar(1.0, 4.0 * a);

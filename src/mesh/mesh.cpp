@@ -25,4 +25,25 @@ Mesh to_planar(const Mesh& mesh) {
   return planar;
 }
 
+Mesh without_elements(const Mesh& mesh, const std::vector<char>& drop) {
+  std::vector<int> kept;
+  for (int f = 0; f < mesh.num_elements(); ++f)
+    if (!drop[static_cast<std::size_t>(f)]) kept.push_back(f);
+  std::vector<int> index(static_cast<std::size_t>(mesh.num_vertices()), -1);
+  for (int f : kept)
+    for (int i = 0; i < mesh.F.cols(); ++i) index[static_cast<std::size_t>(mesh.F(f, i))] = 0;
+  int next = 0;
+  for (int& v : index)
+    if (v == 0) v = next++;
+  Mesh out;
+  out.V.resize(next, mesh.V.cols());
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (index[static_cast<std::size_t>(v)] >= 0) out.V.row(index[static_cast<std::size_t>(v)]) = mesh.V.row(v);
+  out.F.resize(static_cast<Eigen::Index>(kept.size()), mesh.F.cols());
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    for (int i = 0; i < mesh.F.cols(); ++i)
+      out.F(static_cast<Eigen::Index>(k), i) = index[static_cast<std::size_t>(mesh.F(kept[k], i))];
+  return out;
+}
+
 }  // namespace strictmin

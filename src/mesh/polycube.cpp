@@ -89,4 +89,14 @@ Mesh make_bulged_frame_surface(int n, unsigned seed) {
   return m;
 }
 
+Mesh frame_with_a_window(const Mesh& frame) {
+  std::vector<char> window(static_cast<std::size_t>(frame.num_elements()), 1);
+  for (int f = 0; f < frame.num_elements(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::RowVector3d p = frame.V.row(frame.F(f, i));
+      if (std::abs(p.x()) > 1e-12 || p.y() < 1 - 1e-12 || p.y() > 2 + 1e-12) window[static_cast<std::size_t>(f)] = 0;
+    }
+  return without_elements(frame, window);
+}
+
 }  // namespace strictmin

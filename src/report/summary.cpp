@@ -187,6 +187,7 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   s["boundary_loops"] = g.graph.num_boundary_loops;
   s["spread_singularities"] = g.spread_singularities;
   s["full_turn_singularities"] = g.full_turn_singularities;
+  s["warnings"] = g.warnings;
   s["seam_edges"] = g.cut.num_cut_edges;
   s["seam_branches"] = g.cut.branches.size();
   s["cut_mesh_vertices"] = g.cut.num_wedges();

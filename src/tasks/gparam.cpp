@@ -137,12 +137,15 @@ void compute_field(const Mesh& mesh, const GParamOptions& o, GParamOutcome& out)
     split += "; " + std::to_string(out.spread_singularities) +
              " singularities of index +1 or more spread over their neighbours (cones of angle 0 cannot be mapped)";
   if (out.full_turn_singularities > 0)
-    split += "; warning: " + std::to_string(out.full_turn_singularities) +
-             " vertices have index +1 or more (cones of angle 0): every map collapses around them";
+    out.warnings.push_back(std::to_string(out.full_turn_singularities) +
+                           " interior vertices have index +1 or more (cones of angle 0 or less): every map folds or "
+                           "collapses around them (only a given field or cones can leave them; docs/gparam.md)");
   if (out.cones_missed > 0)
-    split += "; warning: " + std::to_string(out.cones_missed) +
-             " vertices' indices differ from the cones asked for (the field would turn by more than pi/4 between two "
-             "faces: near cones of index -1/2 or beyond, or vertices of few faces; docs/gparam.md)";
+    out.warnings.push_back(std::to_string(out.cones_missed) +
+                           " vertices' indices differ from the cones asked for (the field would turn by more than pi/4 "
+                           "between two faces: near cones of index -1/2 or beyond, or vertices of few faces; "
+                           "docs/gparam.md)");
+  for (const std::string& w : out.warnings) split += "; warning: " + w;
   say(o, "field: " + kind + ", energy " + std::to_string(out.field.energy) +
              ", " + std::to_string(out.singular.size()) + " singularities, " + fixed(out.field_time_s) + " s" + split);
 }

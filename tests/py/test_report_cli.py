@@ -107,10 +107,11 @@ class Report(unittest.TestCase):
     def test_report_of_the_demos_results(self):
         """docs/report.md: the demo writes each result's summary, map and distortion for
         `strictmin report`; its param and gparam summaries (inputs example:spherical-cap and
-        example:bulged-frame) were refused as unknown examples (exit 1)."""
+        example:bulged-frame) were refused as unknown examples (exit 1). The gparam-boundary
+        section (example:bulged-frame-window) maps a surface with boundary."""
         demo = os.path.join(self.dir, "demo")
         run("demo", "--out", demo, "--quiet", check_code=0)
-        for section in ("square", "param", "gparam"):
+        for section in ("square", "param", "gparam", "gparam-boundary"):
             summaries = [os.path.join(demo, section, f"{m}.json") for m in ("l2", "linf", "relax")]
             out = os.path.join(self.dir, "again_" + section)
             run("report", out, *summaries, "--quiet", check_code=0)
@@ -123,6 +124,23 @@ class Report(unittest.TestCase):
             self.assertTrue(os.path.getsize(os.path.join(demo, "gparam", name)) > 0, name)
         with open(os.path.join(demo, "index.html")) as f:
             self.assertIn("gparam/quads.png", f.read())
+        # The surface with boundary: genus 1 with one loop, the window's 4 reflex corners at -1/4
+        # beside the frame's 16 corners; every method seamless, without flips, and relax and
+        # linf below l2.
+        boundary = {}
+        for m in ("l2", "linf", "relax"):
+            with open(os.path.join(demo, "gparam-boundary", f"{m}.json")) as f:
+                boundary[m] = json.load(f)
+        for method, s in boundary.items():
+            self.assertEqual(s["boundary_loops"], 1, method)
+            self.assertEqual(s["euler_characteristic"], -1, method)
+            self.assertEqual(sum(x["index"] for x in s["singularity_indices"]), -4, method)
+            self.assertEqual(sum(1 for x in s["singularity_indices"] if x.get("boundary")), 4, method)
+            self.assertLess(s["seam_error"], 1e-9, method)
+            self.assertEqual(s["flipped"], 0, method)
+            self.assertEqual(s["warnings"], [], method)
+        self.assertLess(boundary["linf"]["max_distortion"], boundary["l2"]["max_distortion"])
+        self.assertLessEqual(boundary["relax"]["max_distortion"], boundary["linf"]["max_distortion"] + 1e-4)
 
     def test_a_report_into_an_earlier_ones_folder_removes_its_stale_files(self):
         # The pictures of a run no longer in the report stayed beside the new index.html.

@@ -26,6 +26,12 @@ struct FaceFrames {
   Eigen::MatrixXd x, y, normal;  // #F by 3, unit
   Eigen::VectorXd area;          // #F
   Eigen::VectorXd transport;     // #E: theta_g - theta_f (radians), see above
+
+  // The angle of the 3D vector d (in face f's plane) in f's frame, from x towards y.
+  double angle(int f, const Eigen::Vector3d& d) const;
+  // The transport of edge e read from its face f to its other face: transport(e) from
+  // edge_faces(e, 0), its opposite from edge_faces(e, 1).
+  double transport_from(const SurfaceGraph& graph, int e, int f) const;
 };
 
 FaceFrames face_frames(const Mesh& mesh, const SurfaceGraph& graph);

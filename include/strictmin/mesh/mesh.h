@@ -3,6 +3,7 @@
 // (tets), 0-based. A parametrized surface also carries UV (#UV by 2) and FUV (#F by 3).
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace strictmin {
 
@@ -28,5 +29,9 @@ struct Mesh {
 
 // A planar triangle mesh as #V by 2 (drops a constant z); other meshes unchanged.
 Mesh to_planar(const Mesh& mesh);
+
+// The mesh less the elements `drop` marks (#F entries, non-zero: dropped), without the
+// vertices no element uses any more (the others keep their order). UV is not kept.
+Mesh without_elements(const Mesh& mesh, const std::vector<char>& drop);
 
 }  // namespace strictmin

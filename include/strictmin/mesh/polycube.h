@@ -25,4 +25,9 @@ Mesh make_frame_surface(int n, unsigned seed = 1);
 // demo's and the tests' closed mesh of genus 1 with a non-trivial optimum).
 Mesh make_bulged_frame_surface(int n, unsigned seed = 1);
 
+// A frame (either of the two above) less the faces of one outer side square (x = 0,
+// 1 <= y <= 2): genus 1 with one boundary loop, a square window (the gparam demo's and the
+// tests' surface of genus 1 with boundary).
+Mesh frame_with_a_window(const Mesh& frame);
+
 }  // namespace strictmin

@@ -80,6 +80,9 @@ struct GParamOutcome {
   int spread_singularities = 0;     // computed fields: fans changed to spread index >= +1 singularities
   int full_turn_singularities = 0;  // interior vertices left with index >= +1 (no map can be injective there)
   int cones_missed = 0;  // cones or parallel_field: vertices whose index differs from the one asked for
+  // What the result's status does not say: full-turn singularities left (the map folds or
+  // collapses around them whatever the method), cones missed. Each a sentence.
+  std::vector<std::string> warnings;
   std::vector<int> quarters;  // every vertex's index in quarters
   std::vector<Singularity> singular;
   CutGraph cut;
