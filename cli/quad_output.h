@@ -5,13 +5,10 @@
 #include <optional>
 #include <string>
 
+#include "report/summary.h"  // quad_extraction_phrase
 #include "strictmin/tasks/quad_extraction.h"
 
 namespace strictmin::cli {
-
-// "N quads, M vertices, Euler characteristic X, complete", or the holes and why, or (closed but
-// incomplete: no squares, or a part missing) the surface's Euler characteristic and UV area.
-std::string quad_extraction_phrase(const QuadExtraction& x);
 
 struct QuadOutput {
   nlohmann::json summary;        // the extraction's keys with `file`

@@ -259,11 +259,36 @@ nlohmann::json interp_frame_summary(const InterpFrame& f, const InterpOptions& o
   return j;
 }
 
+std::string quad_extraction_phrase(const QuadExtraction& x) {
+  std::string line = std::to_string(x.mesh.num_quads()) + " quads, " + std::to_string(x.mesh.num_vertices()) +
+                     " vertices, Euler characteristic " + std::to_string(x.euler_characteristic);
+  if (x.complete && x.filled_squares > 0)
+    return line + ", complete after filling " + std::to_string(x.filled_holes) + " hole(s) with " +
+           std::to_string(x.filled_squares) + " squares";
+  if (x.complete) return line + ", complete";
+  if (x.filled_squares > 0)
+    line += ", " + std::to_string(x.filled_holes) + " hole(s) filled with " + std::to_string(x.filled_squares) +
+            " squares";
+  if (x.holes == 0)  // closed, yet not the surface: no squares at all, or a part of it missing
+    return line + ", incomplete: the surface's Euler characteristic is " + std::to_string(x.surface_euler_characteristic) +
+           ", the map's UV area " + std::to_string(std::llround(x.uv_area)) + ", " + std::to_string(x.flipped_triangles) +
+           " flipped triangles, " + std::to_string(x.dropped_squares) + " unit squares left out";
+  return line + ", " + std::to_string(x.holes) + " hole(s): " + std::to_string(x.dropped_squares) +
+         " unit squares left out (" + std::to_string(x.squares_touching_flips) + " touch the map's " +
+         std::to_string(x.flipped_triangles) + " flipped triangles, " + std::to_string(x.squares_wrapped) +
+         " wrap onto themselves, " + std::to_string(x.squares_not_covered_once) + " are not covered once, " +
+         std::to_string(x.squares_overlapping) + " overlap others, " + std::to_string(x.squares_inverted) +
+         " face against the surface)" +
+         (x.non_manifold_vertices > 0 ? ", " + std::to_string(x.non_manifold_vertices) + " non-manifold vertices"
+                                      : std::string());
+}
+
 nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtractionOptions& options) {
   nlohmann::json s;
   s["tolerance"] = options.tolerance;
   s["fill_holes"] = options.fill_holes;
   s["status"] = !x.complete ? "holes" : x.filled_squares > 0 ? "filled" : "complete";
+  if (!x.complete) s["reason"] = quad_extraction_phrase(x);  // "holes" with holes 0: no square, or a part missing
   s["filled_holes"] = x.filled_holes;
   s["filled_squares"] = x.filled_squares;
   s["quads"] = x.mesh.num_quads();
@@ -277,9 +302,11 @@ nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtrac
   s["squares_wrapped"] = x.squares_wrapped;
   s["squares_not_covered_once"] = x.squares_not_covered_once;
   s["squares_overlapping"] = x.squares_overlapping;
+  s["squares_inverted"] = x.squares_inverted;
   s["boundary_edges"] = x.boundary_edges;
   s["holes"] = x.holes;
   s["non_manifold_edges"] = x.non_manifold_edges;
+  s["non_manifold_vertices"] = x.non_manifold_vertices;
   s["euler_characteristic"] = x.euler_characteristic;
   s["surface_euler_characteristic"] = x.surface_euler_characteristic;
   nlohmann::json valences = nlohmann::json::object();

@@ -72,6 +72,10 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& options, co
 // quality (min_angle_deg, max_angle_deg, min_scaled_jacobian, min_side, max_side, mean_side),
 // time_s.
 nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtractionOptions& options);
+// "N quads, M vertices, Euler characteristic X, complete", or the holes and why, or (closed but
+// incomplete: no squares, or a part missing) the surface's Euler characteristic and UV area.
+// The summary's `reason` when the quad mesh is not complete.
+std::string quad_extraction_phrase(const QuadExtraction& x);
 
 // interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
 // lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.

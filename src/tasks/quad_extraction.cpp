@@ -84,8 +84,41 @@ struct Square {
 
 struct Squares {
   std::vector<Square> quads;
-  int touching_flips = 0, wrapped = 0, not_covered_once = 0, overlapping = 0;
+  int touching_flips = 0, wrapped = 0, not_covered_once = 0, overlapping = 0, inverted = 0;
 };
+
+Eigen::Vector3d corner_position(const Mesh& map, const SquareCorner& c) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) p += c.barycentric(i) * map.V.row(map.F(c.face, i)).transpose();
+  return p;
+}
+
+Eigen::Vector3d face_normal(const Mesh& map, int f) {
+  const Eigen::Vector3d a = map.V.row(map.F(f, 0)).transpose(), b = map.V.row(map.F(f, 1)).transpose(),
+                        c = map.V.row(map.F(f, 2)).transpose();
+  return (b - a).cross(c - a).normalized();
+}
+
+// Drops the squares whose quad faces against the surface: its normal (the cross product of
+// its diagonals) has a negative dot product with the sum of the unit normals of the triangles
+// holding its corners. Such a square took a corner from another layer of a fold near a cone
+// (its flood saw no flipped triangle), and overlaps its neighbours.
+void drop_inverted_squares(const Mesh& map, Squares& squares) {
+  std::vector<Square> kept;
+  for (const Square& s : squares.quads) {
+    std::array<Eigen::Vector3d, 4> p;
+    Eigen::Vector3d surface = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) {
+      p[k] = corner_position(map, s.corners[k]);
+      surface += face_normal(map, s.corners[k].face);
+    }
+    if ((p[2] - p[0]).cross(p[3] - p[1]).dot(surface) < 0)
+      ++squares.inverted;
+    else
+      kept.push_back(s);
+  }
+  squares.quads.swap(kept);
+}
 
 // The half-integer points (square centres) in the closed UV triangle of face f, column by
 // column (x = i + 1/2): the work is the columns the face spans and the centres it holds,
@@ -141,10 +174,28 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   return out;
 }
 
+// Whether quads a and b (corner ids) share more than one side's worth of corners: three or
+// four corners, or two that are not a side of both (a diagonal of one of them).
+bool share_more_than_a_side(const std::array<int, 4>& a, const std::array<int, 4>& b) {
+  std::array<int, 4> at_b{};  // per corner of a: its place in b (-1: none)
+  int shared = 0;
+  for (int i = 0; i < 4; ++i) {
+    at_b[i] = static_cast<int>(std::find(b.begin(), b.end(), a[i]) - b.begin());
+    if (at_b[i] == 4) at_b[i] = -1;
+    shared += at_b[i] >= 0;
+  }
+  if (shared <= 1) return false;
+  if (shared > 2) return true;
+  for (int i = 0; i < 4; ++i)
+    if (at_b[i] >= 0 && at_b[(i + 1) % 4] >= 0) return std::abs(at_b[i] - at_b[(i + 1) % 4]) % 2 == 0;  // not adjacent in b
+  return true;  // the two are opposite corners of a
+}
+
 // Drops the squares that share a directed edge with another square (both run along it the
 // same way: they overlap, as next to a fold of the map, where the surface is covered twice
-// by triangles that are not flipped) and counts them in `overlapping`. A square found twice
-// (its centre on an edge, so started twice) is kept once.
+// by triangles that are not flipped), or share more than a side's corners with one (three
+// corners, or a diagonal: folded onto each other), and counts them in `overlapping`. A square
+// found twice (its centre on an edge, so started twice) is kept once.
 void drop_overlapping_squares(Squares& squares) {
   std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> id_of;
   std::vector<std::array<int, 4>> ids;
@@ -160,12 +211,20 @@ void drop_overlapping_squares(Squares& squares) {
     ids.push_back(q);
   }
   std::unordered_map<std::uint64_t, int> uses;
-  for (const auto& q : ids)
-    for (int k = 0; k < 4; ++k) ++uses[directed_edge(q[k], q[(k + 1) % 4])];
+  std::unordered_map<int, std::vector<int>> squares_at;  // corner id -> the squares having it
+  for (size_t i = 0; i < ids.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      ++uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])];
+      squares_at[ids[i][k]].push_back(static_cast<int>(i));
+    }
   squares.quads.clear();
   for (size_t i = 0; i < ids.size(); ++i) {
     bool overlaps = false;
-    for (int k = 0; k < 4; ++k) overlaps = overlaps || uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])] > 1;
+    for (int k = 0; k < 4; ++k) {
+      overlaps = overlaps || uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])] > 1;
+      for (int j : squares_at[ids[i][k]])
+        overlaps = overlaps || (j != static_cast<int>(i) && share_more_than_a_side(ids[i], ids[static_cast<size_t>(j)]));
+    }
     if (overlaps)
       ++squares.overlapping;
     else
@@ -187,9 +246,7 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vect
       const SquareCorner& c = s.corners[k];
       const auto [it, added] = vertex_of.emplace(c.key, static_cast<int>(positions.size()));
       if (added) {
-        Eigen::Vector3d p = Eigen::Vector3d::Zero();
-        for (int i = 0; i < 3; ++i) p += c.barycentric(i) * map.V.row(map.F(c.face, i)).transpose();
-        positions.push_back(p);
+        positions.push_back(corner_position(map, c));
         keys.push_back(c.key);
         barycentrics.push_back(c.barycentric);
         faces.push_back(c.face);
@@ -221,6 +278,34 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vect
   return q;
 }
 
+// The vertices whose quads form more than one fan (groups joined through the quad edges at
+// the vertex): two corners of quads that touch at the vertex alone, as across a pinched hole.
+int count_non_manifold_vertices(const QuadMesh& q) {
+  std::vector<std::vector<int>> quads_at(static_cast<size_t>(q.num_vertices()));
+  for (int i = 0; i < q.num_quads(); ++i)
+    for (int k = 0; k < 4; ++k) quads_at[static_cast<size_t>(q.Q(i, k))].push_back(i);
+  int count = 0;
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    const std::vector<int>& around = quads_at[static_cast<size_t>(v)];
+    UnionFind fans(static_cast<int>(around.size()));
+    // Per neighbour w of v along a quad edge: the first quad seen with the edge v-w.
+    std::unordered_map<int, int> first_with;
+    for (size_t a = 0; a < around.size(); ++a) {
+      const int i = around[a];
+      int k = 0;
+      while (q.Q(i, k) != v) ++k;
+      for (int w : {q.Q(i, (k + 1) % 4), q.Q(i, (k + 3) % 4)}) {
+        const auto [it, added] = first_with.emplace(w, static_cast<int>(a));
+        if (!added) fans.unite(it->second, static_cast<int>(a));
+      }
+    }
+    int groups = 0;
+    for (size_t a = 0; a < around.size(); ++a) groups += fans.find(static_cast<int>(a)) == static_cast<int>(a);
+    count += groups > 1;
+  }
+  return count;
+}
+
 // Edges, boundary, manifoldness, holes, Euler characteristic and valences of the quad mesh.
 void check_topology(QuadExtraction& x) {
   const QuadMesh& q = x.mesh;
@@ -246,6 +331,7 @@ void check_topology(QuadExtraction& x) {
     on_boundary[a] = on_boundary[b] = 1;
   }
   x.edges = undirected_twice / 2 + x.boundary_edges;
+  x.non_manifold_vertices = count_non_manifold_vertices(q);
   for (int v = 0; v < q.num_vertices(); ++v)
     if (on_boundary[v] && boundary.find(v) == v) ++x.holes;
   for (int v : valence) ++x.valences[v];
@@ -305,12 +391,15 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   }
 
   Squares squares = flood_every_square(map, graph, transitions, options.tolerance);
+  drop_inverted_squares(map, squares);
   drop_overlapping_squares(squares);
   x.squares_touching_flips = squares.touching_flips;
   x.squares_wrapped = squares.wrapped;
   x.squares_not_covered_once = squares.not_covered_once;
   x.squares_overlapping = squares.overlapping;
-  x.dropped_squares = squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping;
+  x.squares_inverted = squares.inverted;
+  x.dropped_squares =
+      squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping + squares.inverted;
   std::vector<SurfacePointKey> keys;  // each quad-mesh vertex's surface point
   x.mesh = assemble(map, squares.quads, keys);
   if (options.fill_holes) {
@@ -325,7 +414,7 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
   x.quality = quad_quality(x.mesh);
   // Closed, manifold, the surface's topology, one quad per unit of UV area, and no square left
   // out or fold unless holes were filled (then the status says "filled").
-  x.complete = x.boundary_edges == 0 && x.non_manifold_edges == 0 &&
+  x.complete = x.boundary_edges == 0 && x.non_manifold_edges == 0 && x.non_manifold_vertices == 0 &&
                x.euler_characteristic == x.surface_euler_characteristic &&
                std::abs(x.mesh.num_quads() - x.uv_area) <= 1e-6 * std::max(1.0, x.uv_area) &&
                ((x.dropped_squares == 0 && x.flipped_triangles == 0) || x.filled_squares > 0);

@@ -11,9 +11,9 @@
 // so corners found from different squares are one vertex of the quad mesh.
 //
 // A square that touches a flipped (or zero-area) triangle, wraps onto itself, is not covered
-// exactly once, or overlaps another square (shares one of its edges run the same way) is
-// left out: the quad mesh then has holes, and the extraction says
-// so (complete = false). A map without flips whose squares are all covered gives a closed
+// exactly once, faces against the surface, or overlaps another square (shares one of its
+// edges run the same way, three of its corners or a diagonal) is left out: the quad mesh then
+// has holes, and the extraction says so (complete = false). A map without flips whose squares are all covered gives a closed
 // quad mesh with the surface's Euler characteristic, one quad per unit of UV area, and a
 // vertex of valence 4 - k at each cone of index k/4.
 #include <Eigen/Core>
@@ -66,7 +66,7 @@ QuadQuality quad_quality(const QuadMesh& quads);
 
 struct QuadExtraction {
   QuadMesh mesh;
-  // Closed, manifold, the surface's Euler characteristic, one quad per unit of UV area, and
+  // Closed, manifold (edges and vertices), the surface's Euler characteristic, one quad per unit of UV area, and
   // either no square left out and no fold, or the holes filled (fill_holes).
   bool complete = false;
   int filled_holes = 0, filled_squares = 0;  // fill_holes: the holes filled and their squares
@@ -75,11 +75,14 @@ struct QuadExtraction {
   int cones = 0;               // vertices of the map with a non-zero index
   int dropped_squares = 0;     // squares left out (the reasons below, each square counted once)
   int squares_touching_flips = 0, squares_wrapped = 0, squares_not_covered_once = 0;
-  int squares_overlapping = 0;  // sharing a quad edge with another square, run the same way (next to a fold)
+  int squares_overlapping = 0;  // sharing a quad edge with another square, run the same way, or more than a
+                                // side's corners (three, or a diagonal): folded onto it (next to a fold)
+  int squares_inverted = 0;     // facing against the surface (a corner from another layer of a fold)
   int edges = 0;               // of the quad mesh
   int boundary_edges = 0;      // quad edges with one quad (around the holes)
   int holes = 0;               // connected groups of boundary edges
   int non_manifold_edges = 0;  // a directed quad edge used twice
+  int non_manifold_vertices = 0;  // vertices whose quads form several fans (touching at the vertex alone)
   int euler_characteristic = 0;          // of the quad mesh
   int surface_euler_characteristic = 0;  // of the input surface
   std::map<int, int> valences;           // valence -> how many vertices
