@@ -362,14 +362,14 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   o.solver.method = Method::L2;
   const GParamOutcome free_map = global_parametrize(cube, o);
   expect_input_error([&] { extract_quads(free_map.mapped, {}, "free.obj"); },
-                     {"free.obj", "translation", "not a pair of integers"});
+                     {"free.obj", "translation", "misses a pair of integers"});
 
   // The integer-grid map moved by (1/2, 1/2): the translations stay integers (I - R moves
   // (1/2, 1/2) to an integer vector for every quarter turn R), the cones go half-way.
   GParamOutcome grid = polycube_grid_map(cube, 1.0);
   grid.mapped.UV.rowwise() += Eigen::RowVector2d(0.5, 0.5);
   expect_input_error([&] { extract_quads(grid.mapped, {}, "half.obj"); },
-                     {"half.obj", "cone of index 1/4", "not at an integer point"});
+                     {"half.obj", "cone of index 1/4", "off the nearest integer point"});
 
   // Two sides of an edge that no quarter turn relates.
   Mesh torn = polycube_grid_map(cube, 1.0).mapped;
@@ -377,6 +377,18 @@ TEST(QuadExtraction, MapsThatAreNotIntegerGridMapsAreRefused) {
   torn.UV.row(torn.UV.rows() - 1) << 100.25, -3;
   torn.FUV(0, 0) = static_cast<int>(torn.UV.rows() - 1);
   expect_input_error([&] { extract_quads(torn, {}, "torn.obj"); }, {"torn.obj", "edge", "not seamless"});
+
+  // An integer-grid map whose UVs (near 40) are off the grid by 1e-13, within their round-off
+  // (about 5.7e-13), checked with a tolerance of 1e-16: refused, and the message says that the
+  // tolerance asks for more digits than the UVs have (it said "(2, 1) and (2, 1) differ by more
+  // than a quarter turn", or showed the tolerance as 0.000000).
+  Mesh hair = polycube_grid_map(cube, 1.0).mapped;
+  for (Eigen::Index i = 0; i < hair.UV.rows(); ++i) hair.UV.row(i) += Eigen::RowVector2d(40 + 1e-13 * (i % 3), 40);
+  EXPECT_NO_THROW(extract_quads(hair, {}, "hair.obj"));
+  QuadExtractionOptions strict;
+  strict.tolerance = 1e-16;
+  expect_input_error([&] { extract_quads(hair, strict, "hair.obj"); },
+                     {"hair.obj", "round-off of UVs near", "give a larger --tolerance"});
 
   // A surface with a boundary (one face removed).
   Mesh open = polycube_grid_map(cube, 1.0).mapped;

@@ -2,6 +2,7 @@
 #include "tasks/uv_transitions.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "strictmin/field/cut_graph.h"
@@ -17,6 +18,23 @@ std::string shown(const Eigen::Vector2d& x) {
   s.precision(10);
   s << "(" << x.x() << ", " << x.y() << ")";
   return s.str();
+}
+
+std::string shown(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+// " by M (more than the tolerance T)" and `verdict`, or, when M is within the round-off of
+// UVs of this magnitude, that the tolerance asks for more digits than the UVs have.
+std::string missed_by(double miss, double tolerance, double magnitude, const std::string& verdict) {
+  const std::string out = " by " + shown(miss) + " (more than the tolerance " + shown(tolerance) + ")";
+  const double round_off = 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, magnitude);
+  if (miss > round_off) return out + " " + verdict;
+  return out + "; that is the round-off of UVs near " + shown(magnitude) + " (about " + shown(round_off) +
+         "): give a larger --tolerance";
 }
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -50,16 +68,18 @@ UvTransition transition_of_edge(const Mesh& map, const SurfaceGraph& g, int e, d
     const double miss = (quarter_rotation(k) * d1 - d0).norm();
     if (miss < best) best = miss, t.quarter_turns = k;
   }
+  const double magnitude = corner_uv(map, f0, a0).cwiseAbs().maxCoeff();
   if (best > tolerance * (1 + d0.norm()))
     throw InputError(prefix(source) + edge + ": its UVs on the two sides, " + shown(d0) + " and " + shown(d1) +
-                     ", differ by more than a quarter turn (the map is not seamless)");
+                     ", differ from a quarter turn of each other" +
+                     missed_by(best, tolerance * (1 + d0.norm()), magnitude, "(the map is not seamless)"));
   const Eigen::Matrix2d R = t.rotation();
   const Eigen::Vector2d ta = corner_uv(map, f0, a0) - R * corner_uv(map, f1, a1);
   const Eigen::Vector2d tb = corner_uv(map, f0, b0) - R * corner_uv(map, f1, b1);
   if (grid_distance(ta) > tolerance || grid_distance(tb) > tolerance)
-    throw InputError(prefix(source) + edge + ": the seam's translation " + shown(ta) +
-                     " is not a pair of integers within " + std::to_string(tolerance) +
-                     " (not an integer-grid map; gparam --integer-grid makes one)");
+    throw InputError(prefix(source) + edge + ": the seam's translation " + shown(ta) + " misses a pair of integers" +
+                     missed_by(std::max(grid_distance(ta), grid_distance(tb)), tolerance, magnitude,
+                               "(not an integer-grid map; gparam --integer-grid makes one)"));
   t.translation = {std::round(ta.x()), std::round(ta.y())};
   return t;
 }
@@ -106,8 +126,9 @@ std::vector<int> cones_on_the_grid(const Mesh& map, const SurfaceGraph& g, doubl
     const Eigen::Vector2d at = corner_uv(map, f, g.fan_corners[g.fan_start[v]]);
     if (grid_distance(at) > tolerance)
       throw InputError(prefix(source) + "vertex " + std::to_string(v) + " (0-based) is a cone of index " +
-                       std::to_string(quarters[v]) + "/4 at UV " + shown(at) +
-                       ", not at an integer point (not an integer-grid map; gparam --integer-grid makes one)");
+                       std::to_string(quarters[v]) + "/4 at UV " + shown(at) + ", off the nearest integer point" +
+                       missed_by(grid_distance(at), tolerance, at.cwiseAbs().maxCoeff(),
+                                 "(not an integer-grid map; gparam --integer-grid makes one)"));
   }
   return quarters;
 }

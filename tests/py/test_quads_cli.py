@@ -242,7 +242,7 @@ class Quads(CubeCase):
         run("gparam", self.cube, "-o", self.out("free.obj"), "--field", self.field, "--edge-length", "0.7",
             "--quiet", check_code=0)
         self.assert_refused(["quads", self.out("free.obj"), "-o", q, "--summary", s],
-                            ["free.obj", "not a pair of integers"], [q, s])
+                            ["free.obj", "misses a pair of integers"], [q, s])
         # Only OBJ is written; gparam's quads need the integer grid.
         self.grid_map()
         self.assert_refused(["quads", self.out("map.obj"), "-o", self.out("q.off")], ["q.off", ".obj only"],

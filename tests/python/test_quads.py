@@ -106,7 +106,7 @@ def test_fill_holes_matches_cli(tmp_path, closed):
 def test_bad_input(closed):
     _, V, F = closed
     r = strictmin.gparam(V, F, quads=200, edge_length=None)
-    with pytest.raises(ValueError, match="not a pair of integers"):
+    with pytest.raises(ValueError, match="misses a pair of integers"):
         strictmin.quads(V, F, r.uv, r.fuv)
     g = strictmin.gparam(V, F, quads=200, integer_grid=True)
     with pytest.raises(ValueError, match="fuv must be #F by 3"):
