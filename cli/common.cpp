@@ -23,7 +23,7 @@ void add_output_options(CLI::App& cmd, OutputOptions& out) {
   cmd.add_option("--summary", out.summary, "Write a JSON summary to FILE ('-' for stdout)")->type_name("FILE");
   cmd.add_option("--distortion", out.distortion, "Write each element's distortion to FILE, one per line, input order ('-' for stdout)")
       ->type_name("FILE");
-  cmd.add_flag("--quiet,-q", out.quiet, "No progress messages on stderr");
+  cmd.add_flag("--quiet,-q", out.quiet, "No progress messages or warnings on stderr (errors are still printed; the summary keeps the warnings it has keys for)");
   cmd.add_option("--threads", out.threads, "Number of threads (default 0: all cores)")->check(at_least(0));
 }
 

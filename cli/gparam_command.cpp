@@ -101,6 +101,41 @@ QuadExtractionOptions quad_options(const GParamArgs& a) {
   return o;
 }
 
+// The UV area of the map's triangles of positive area: about the unit squares it has.
+double positive_uv_area(const Mesh& map) {
+  double area = 0;
+  for (int f = 0; f < map.num_elements(); ++f) {
+    const Eigen::Vector2d p = map.UV.row(map.FUV(f, 0)).transpose(), a = map.UV.row(map.FUV(f, 1)).transpose() - p,
+                          b = map.UV.row(map.FUV(f, 2)).transpose() - p;
+    area += std::max(0.0, a.x() * b.y() - a.y() * b.x()) / 2;
+  }
+  return area;
+}
+
+// The quad mesh of gparam's map, or why not. A map finer than the extraction takes is said in
+// gparam's terms (the extraction's own message asks whether the UVs are in grid units).
+QuadOutput extract_quad_mesh(const GParamArgs& a, const GParamOutcome& g) {
+  QuadOutput quads;
+  const bool usable = status_usable(g.result.status);
+  const double squares = usable ? positive_uv_area(g.mapped) : 0;
+  if (!usable)
+    quads.summary = {{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
+  else if (squares > kMaxQuadExtractionSquares)
+    quads.summary = {{"status", "not-extracted"},
+                     {"reason", "the map has about " + std::to_string(std::llround(squares)) +
+                                    " unit squares (--quads / --edge-length), more than quad extraction takes (1e7, "
+                                    "about 10 GB)"},
+                     {"file", ""}};
+  else
+    quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, quad_options(a));
+  if (quads.summary.value("status", std::string()) == "not-extracted") {
+    // A quad mesh left at the path by an earlier run would pass for this run's.
+    std::error_code ec;
+    if (std::filesystem::remove(a.quad_mesh, ec)) quads.summary["removed_earlier_file"] = a.quad_mesh;
+  }
+  return quads;
+}
+
 int run_gparam(const GParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_run_outputs(a.out,
@@ -135,10 +170,7 @@ int run_gparam(const GParamArgs& a) {
   QuadOutput quads;
   if (!a.quad_mesh.empty()) {
     progress(a.out, "gparam: quad extraction");
-    if (status_usable(g.result.status))
-      quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, quad_options(a));
-    else
-      quads.summary = {{"status", "not-extracted"}, {"reason", "the map is not usable"}, {"file", ""}};
+    quads = extract_quad_mesh(a, g);
     s["quad_mesh"] = quads.summary;
     quads_complete = quads.complete;
     progress(a.out, "gparam: quad mesh " + s["quad_mesh"].value("status", std::string()) + ", " +

@@ -162,8 +162,8 @@ SurfaceGraph checked_surface_graph(const Mesh& mesh, const std::string& source, 
   for (int v = 0; v < g.num_vertices; ++v)
     if (!used[v])
       throw InputError(prefix(source) + "vertex " + std::to_string(v) +
-                       " (0-based) belongs to no face: a global parametrization needs every vertex on the surface "
-                       "(singularities and cone files are per vertex); remove the unused vertices");
+                       " (0-based) belongs to no face: remove the unused vertices (a cross field's singularities, cone "
+                       "files and seams are per vertex of the surface, so every vertex must lie on it)");
   if (!build_fans(mesh, g))  // surface_topology has reported every non-manifold vertex above
     throw InputError(prefix(source) + "a vertex's faces do not form one fan (non-manifold mesh)");
   return g;

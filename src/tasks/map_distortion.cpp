@@ -1,6 +1,7 @@
 #include "strictmin/tasks/map_distortion.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/validate.h"
@@ -82,9 +83,15 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
                      " has " + std::to_string(rest.num_vertices()) + ": a map needs the same connectivity");
   for (int e = 0; e < rest.num_elements(); ++e)
     for (int j = 0; j < rest.F.cols(); ++j)
-      if (rest.F(e, j) != mapped.F(e, j))
-        throw InputError("element " + std::to_string(e) + " (0-based) has different vertices in " + rest_name + " and " +
-                         mapped_name + ": a map needs the same connectivity");
+      if (rest.F(e, j) != mapped.F(e, j)) {
+        Eigen::VectorXi a = rest.F.row(e).transpose(), b = mapped.F.row(e).transpose();
+        std::sort(a.data(), a.data() + a.size());
+        std::sort(b.data(), b.data() + b.size());
+        const std::string what = a == b ? " has its vertices in another order (another orientation) in "
+                                        : " has different vertices in ";
+        throw InputError("element " + std::to_string(e) + " (0-based)" + what + rest_name + " and " + mapped_name +
+                         ": a map needs the same connectivity, element by element and corner by corner");
+      }
   if (mapped.has_uv()) return map_distortion(rest, corner_images(mapped.FUV, mapped.UV), measure);
   if (rest.element_type() == ElementType::Triangle && rest.is_planar() && mapped.V.cols() == 3 && !mapped.is_planar())
     throw InputError(mapped_name + " is not planar, while " + rest_name +

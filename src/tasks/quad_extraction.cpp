@@ -27,8 +27,10 @@ std::string prefix(const std::string& source) { return source.empty() ? std::str
 // More unit squares under the triangles of positive UV area than this, more grid cells under
 // their UV bounding boxes, or UVs further from 0, are refused: the UVs are then most likely
 // not in grid units (and the work would not end: beyond kMaxUv a unit step is lost in a
-// double's digits; 1e7 squares hold about 3 GB while they are flooded).
-constexpr double kMaxSquares = 1e7, kMaxCells = 4e8, kMaxUv = 1e9;
+// double's digits). The extraction holds about 1 KB a square at its peak (1.55 million
+// squares: 1.55 GB, 35 s), so 1e7 squares take about 10 GB.
+constexpr double kMaxCells = 4e8, kMaxUv = 1e9;
+constexpr double kMaxSquares = kMaxQuadExtractionSquares;
 
 // The work the extraction would do, added up over the triangles: the UV area of those of
 // positive area (the squares flooded) and the grid cells under each one's UV bounding box

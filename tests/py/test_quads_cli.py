@@ -212,6 +212,48 @@ class Quads(CubeCase):
             fans_split += len({find(i) for i in around}) > 1
         self.assertEqual(fans_split, q["non_manifold_vertices"])
 
+    def test_a_map_too_fine_is_not_extracted_and_no_earlier_file_stays(self):
+        # --quads 2e7: more squares than the extraction takes. The reason is said in gparam's
+        # terms (it asked whether the UVs were in grid units), and a quad mesh left at the path
+        # by an earlier run is removed (it stayed, passing for this run's).
+        earlier = self.write("q.obj", "v 0 0 0\n")
+        summary = self.out("fine.json")
+        p = run("gparam", self.cube, "-o", self.out("fine.obj"), "--field", self.field, "--quads", "20000000",
+                "--integer-grid", "--quad-mesh", earlier, "--summary", summary, check_code=2)
+        with open(summary) as f:
+            q = json.load(f)["quad_mesh"]
+        self.assertEqual(q["status"], "not-extracted")
+        self.assertIn("unit squares (--quads / --edge-length), more than quad extraction takes", q["reason"])
+        self.assertNotIn("grid units", q["reason"])
+        self.assertEqual(q["removed_earlier_file"], earlier)
+        self.assertFalse(os.path.exists(earlier))
+        self.assertIn("not-extracted", p.stderr)
+
+    def test_messages_name_the_problem(self):
+        # An unused vertex in a map given to quads: the message spoke of "a global
+        # parametrization"; eval of a map whose elements run the other way said "different
+        # vertices".
+        self.grid_map()
+        with open(self.out("map.obj")) as f:
+            lines = f.read().split("\n")
+        first_v = next(i for i, l in enumerate(lines) if l.startswith("v "))
+        lines.insert(first_v, "v 9 9 9")
+        shifted = []
+        for l in lines:
+            if l.startswith("f "):
+                l = "f " + " ".join("/".join([str(int(c.split("/")[0]) + 1)] + c.split("/")[1:]) for c in l.split()[1:])
+            shifted.append(l)
+        unused = self.write("unused.obj", "\n".join(shifted))
+        p = run("quads", unused, "-o", self.out("u.obj"), check_code=1)
+        self.assertIn("vertex 0 (0-based) belongs to no face: remove the unused vertices", p.stderr)
+        self.assertNotIn("global parametrization", p.stderr)
+        with open(self.cube) as f:
+            cube_lines = f.read().split("\n")
+        rev = self.write("rev.obj", "\n".join(
+            "f " + " ".join(reversed(l.split()[1:])) if l.startswith("f ") else l for l in cube_lines))
+        p = run("eval", self.cube, rev, check_code=1)
+        self.assertIn("element 0 (0-based) has its vertices in another order (another orientation)", p.stderr)
+
     def test_a_collapsed_map_is_incomplete_without_holes(self):
         # Every vt the same integer point: seamless and on the grid, every triangle of zero UV
         # area, no square at all. Exit 2, and the message says why rather than "0 hole(s)".

@@ -25,6 +25,9 @@
 
 namespace strictmin {
 
+// The most unit squares extract_quads takes (UV area of the triangles of positive area).
+inline constexpr double kMaxQuadExtractionSquares = 1e7;
+
 struct QuadExtractionOptions {
   // UV units: how far a seam translation or a cone may be from the grid, and how close to a
   // vertex or an edge a grid point counts as on it.
@@ -72,7 +75,7 @@ struct QuadExtraction {
   int filled_holes = 0, filled_squares = 0;  // fill_holes: the holes filled and their squares
   double uv_area = 0;          // the map's signed UV area: the number of squares when complete
   int flipped_triangles = 0;   // of the map: UV area <= 0
-  int cones = 0;               // vertices of the map with a non-zero index
+  int cones = 0;               // vertices of the map with a non-zero index (none of their triangles flipped)
   int dropped_squares = 0;     // squares left out (the reasons below, each square counted once)
   int squares_touching_flips = 0, squares_wrapped = 0, squares_not_covered_once = 0;
   int squares_overlapping = 0;  // sharing a quad edge with another square, run the same way, or more than a
