@@ -114,38 +114,43 @@ ReportSection write_section_of(const GParamDemo& demo, const std::string& dir, c
 
 ReportSection write_gparam_demo_section(const std::string& dir, const ComparisonOptions& options,
                                         const OutputOptions& output, bool& all_solved) {
-  GParamDemo demo;
-  demo.id = "gparam";
-  demo.example = "example:bulged-frame";
-  demo.surface = demo_bulged_frame();
-  demo.title = "Global parametrization: a closed genus-1 surface";
-  demo.description =
-      "A polycube frame (3 x 3 x 1 cubes without the centre, " + std::to_string(demo.surface.num_elements()) +
-      " triangles) with its flat sides bulged, mapped seamlessly to the plane along its smoothest cross field "
-      "(strictmin gparam, docs/gparam.md). The 8 convex corners have index +1/4, the 8 saddle corners -1/4 (they "
-      "sum to the Euler characteristic 0). The distortion is the field deviation: how far each triangle's "
-      "differential is from the rotation that takes the field to the u and v axes. The links show each map's "
-      "seams (dark red), singularities (dots) and unit grid; the linf run also links an integer-grid map (cones and "
-      "seam translations rounded to the grid, strictmin gparam --integer-grid) and its quad mesh (strictmin quads).";
-  demo.pin_field = true;
-  demo.quad_mesh = true;
-  return write_section_of(demo, dir, options, output, all_solved);
+  Mesh frame = demo_bulged_frame();
+  const std::string triangles = std::to_string(frame.num_elements());
+  return write_section_of(
+      {.id = "gparam",
+       .example = "example:bulged-frame",
+       .title = "Global parametrization: a closed genus-1 surface",
+       .description =
+           "A polycube frame (3 x 3 x 1 cubes without the centre, " + triangles +
+           " triangles) with its flat sides bulged, mapped seamlessly to the plane along its smoothest cross field "
+           "(strictmin gparam, docs/gparam.md). The 8 convex corners have index +1/4, the 8 saddle corners -1/4 (they "
+           "sum to the Euler characteristic 0). The distortion is the field deviation: how far each triangle's "
+           "differential is from the rotation that takes the field to the u and v axes. The links show each map's "
+           "seams (dark red), singularities (dots) and unit grid; the linf run also links an integer-grid map (cones "
+           "and seam translations rounded to the grid, strictmin gparam --integer-grid) and its quad mesh (strictmin "
+           "quads).",
+       .surface = std::move(frame),
+       .pin_field = true,
+       .quad_mesh = true},
+      dir, options, output, all_solved);
 }
 
 ReportSection write_gparam_boundary_demo_section(const std::string& dir, const ComparisonOptions& options,
                                                  const OutputOptions& output, bool& all_solved) {
-  GParamDemo demo;
-  demo.id = "gparam-boundary";
-  demo.example = "example:bulged-frame-window";
-  demo.surface = demo_bulged_frame_window();
-  demo.title = "Global parametrization: a surface with boundary";
-  demo.description =
-      "The bulged frame with a square window cut in one outer side (" + std::to_string(demo.surface.num_elements()) +
-      " triangles, genus 1, one boundary loop), mapped seamlessly along its smoothest cross field, which follows the "
-      "boundary (docs/gparam.md, \"Surfaces with boundary\"). The window's four corners are reflex: boundary indices "
-      "of -1/4, so that with the 16 frame corners the indices sum to the Euler characteristic -1. The map's boundary "
-      "is free; the cut joins the window to the singularities and the handles' loops.";
-  return write_section_of(demo, dir, options, output, all_solved);
+  Mesh windowed = demo_bulged_frame_window();
+  const std::string triangles = std::to_string(windowed.num_elements());
+  return write_section_of(
+      {.id = "gparam-boundary",
+       .example = "example:bulged-frame-window",
+       .title = "Global parametrization: a surface with boundary",
+       .description =
+           "The bulged frame with a square window cut in one outer side (" + triangles +
+           " triangles, genus 1, one boundary loop), mapped seamlessly along its smoothest cross field, which follows "
+           "the boundary (docs/gparam.md, \"Surfaces with boundary\"). The window's four corners are reflex: boundary "
+           "indices of -1/4, so that with the 16 frame corners the indices sum to the Euler characteristic -1. The "
+           "map's boundary is free; the cut joins the window to the singularities and the handles' loops.",
+       .surface = std::move(windowed)},
+      dir, options, output, all_solved);
 }
 
 }  // namespace strictmin::cli

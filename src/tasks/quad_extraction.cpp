@@ -6,7 +6,6 @@
 #include <chrono>
 #include <Eigen/Geometry>
 #include <cmath>
-#include <set>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -27,8 +26,8 @@ std::string prefix(const std::string& source) { return source.empty() ? std::str
 // More unit squares under the triangles of positive UV area than this, more grid cells under
 // their UV bounding boxes, or UVs further from 0, are refused: the UVs are then most likely
 // not in grid units (and the work would not end: beyond kMaxUv a unit step is lost in a
-// double's digits). The extraction holds about 1 KB a square at its peak (1.55 million
-// squares: 1.55 GB, 35 s), so 1e7 squares take about 10 GB.
+// double's digits). The extraction holds about 0.8 KB a square at its peak (1.55 million
+// squares: 1.22 GB, 16-18 s), so 1e7 squares take about 8 GB.
 constexpr double kMaxCells = 4e8, kMaxUv = 1e9;
 constexpr double kMaxSquares = kMaxQuadExtractionSquares;
 
@@ -152,8 +151,12 @@ std::vector<Eigen::Vector2d> centres_in_face(const Mesh& map, int f, double tole
 Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std::vector<UvTransition>& transitions,
                            double tolerance) {
   Squares out;
+  // About as many squares as the positive UV area (the vector's doubling would hold up to
+  // three times as many at its peak).
+  out.quads.reserve(static_cast<size_t>(uv_extent(map).positive_area * 1.02) + 16);
   SquareFlooder flooder(map, graph, transitions, tolerance);
   std::unordered_set<SurfacePointKey, SurfacePointKeyHash> started;  // (face, 2 x centre)
+  started.reserve(out.quads.capacity() + out.quads.capacity() / 4);
   const auto start_key = [](int f, const Eigen::Vector2d& c) {
     return SurfacePointKey{SurfacePointKey::Face, f, std::llround(2 * c.x()), std::llround(2 * c.y())};
   };
@@ -174,6 +177,17 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
     }
   }
   return out;
+}
+
+// One id per surface point (SquareCorner::key), per square its four corners' ids.
+std::vector<std::array<int, 4>> corner_ids(const std::vector<Square>& squares) {
+  std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> id_of;
+  id_of.reserve(squares.size() + squares.size() / 4);  // about one surface point per square
+  std::vector<std::array<int, 4>> ids(squares.size());
+  for (size_t i = 0; i < squares.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+      ids[i][k] = id_of.emplace(squares[i].corners[k].key, static_cast<int>(id_of.size())).first->second;
+  return ids;
 }
 
 // Whether quads a and b (corner ids) share more than one side's worth of corners: three or
@@ -199,96 +213,123 @@ bool share_more_than_a_side(const std::array<int, 4>& a, const std::array<int, 4
 // corners, or a diagonal: folded onto each other), and counts them in `overlapping`. A square
 // found twice (its centre on an edge, so started twice) is kept once.
 void drop_overlapping_squares(Squares& squares) {
-  std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> id_of;
-  std::vector<std::array<int, 4>> ids;
-  std::set<std::array<int, 4>> seen;
-  std::vector<Square> unique;
-  for (const Square& s : squares.quads) {
-    std::array<int, 4> q{};
-    for (int k = 0; k < 4; ++k) q[k] = id_of.emplace(s.corners[k].key, static_cast<int>(id_of.size())).first->second;
-    std::array<int, 4> canonical = q;
-    std::rotate(canonical.begin(), std::min_element(canonical.begin(), canonical.end()), canonical.end());
-    if (!seen.insert(canonical).second) continue;
-    unique.push_back(s);
-    ids.push_back(q);
+  // Arrays rather than node-based maps: at a million squares these hold the extraction's peak
+  // memory (docs/gparam.md, "Quad meshes").
+  const std::vector<std::array<int, 4>> ids = corner_ids(squares.quads);
+  const size_t n = ids.size();
+  std::vector<char> keep(n, 1);
+  {  // a square found twice (the same corners from the same one on) is kept once, the first
+    std::vector<std::pair<std::array<int, 4>, int>> canonical(n);
+    for (size_t i = 0; i < n; ++i) {
+      canonical[i] = {ids[i], static_cast<int>(i)};
+      std::rotate(canonical[i].first.begin(), std::min_element(canonical[i].first.begin(), canonical[i].first.end()),
+                  canonical[i].first.end());
+    }
+    std::sort(canonical.begin(), canonical.end());
+    for (size_t i = 1; i < n; ++i)
+      if (canonical[i].first == canonical[i - 1].first) keep[static_cast<size_t>(canonical[i].second)] = 0;
   }
-  std::unordered_map<std::uint64_t, int> uses;
-  std::unordered_map<int, std::vector<int>> squares_at;  // corner id -> the squares having it
-  for (size_t i = 0; i < ids.size(); ++i)
+  std::vector<std::uint64_t> edges;  // the kept squares' directed edges, sorted
+  int num_ids = 0;
+  for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 4; ++k) {
-      ++uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])];
-      squares_at[ids[i][k]].push_back(static_cast<int>(i));
+      num_ids = std::max(num_ids, ids[i][k] + 1);
+      if (keep[i]) edges.push_back(directed_edge(ids[i][k], ids[i][(k + 1) % 4]));
     }
-  squares.quads.clear();
-  for (size_t i = 0; i < ids.size(); ++i) {
-    bool overlaps = false;
-    for (int k = 0; k < 4; ++k) {
-      overlaps = overlaps || uses[directed_edge(ids[i][k], ids[i][(k + 1) % 4])] > 1;
-      for (int j : squares_at[ids[i][k]])
-        overlaps = overlaps || (j != static_cast<int>(i) && share_more_than_a_side(ids[i], ids[static_cast<size_t>(j)]));
+  std::sort(edges.begin(), edges.end());
+  const auto runs_twice = [&](std::uint64_t e) {
+    const auto range = std::equal_range(edges.begin(), edges.end(), e);
+    return range.second - range.first > 1;
+  };
+  std::vector<int> start(static_cast<size_t>(num_ids) + 1, 0), at;  // per corner id: the kept squares having it
+  for (size_t i = 0; i < n; ++i)
+    if (keep[i])
+      for (int k = 0; k < 4; ++k) ++start[static_cast<size_t>(ids[i][k]) + 1];
+  for (size_t v = 0; v < static_cast<size_t>(num_ids); ++v) start[v + 1] += start[v];
+  at.resize(static_cast<size_t>(start.back()));
+  std::vector<int> filled(start.begin(), start.end() - 1);
+  for (size_t i = 0; i < n; ++i)
+    if (keep[i])
+      for (int k = 0; k < 4; ++k) at[static_cast<size_t>(filled[static_cast<size_t>(ids[i][k])]++)] = static_cast<int>(i);
+  std::vector<char> overlaps(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    for (int k = 0; k < 4 && !overlaps[i]; ++k) {
+      overlaps[i] = runs_twice(directed_edge(ids[i][k], ids[i][(k + 1) % 4]));
+      const size_t v = static_cast<size_t>(ids[i][k]);
+      for (int a = start[v]; a < start[v + 1] && !overlaps[i]; ++a) {
+        const size_t j = static_cast<size_t>(at[static_cast<size_t>(a)]);
+        overlaps[i] = j != i && share_more_than_a_side(ids[i], ids[j]);
+      }
     }
-    if (overlaps)
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    if (overlaps[i])
       ++squares.overlapping;
     else
-      squares.quads.push_back(unique[i]);
+      squares.quads[kept++] = squares.quads[i];
   }
+  squares.quads.resize(kept);
 }
 
 // One vertex per surface point, one row of UV per (vertex, integer UV) pair.
 QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vector<SurfacePointKey>& keys) {
   QuadMesh q;
-  std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> vertex_of, uv_of;
-  std::vector<Eigen::Vector3d> positions, barycentrics;
-  std::vector<int> faces;
-  std::vector<Eigen::Vector2d> uvs;
-  std::vector<std::array<int, 4>> quads, quad_uvs;
-  for (const Square& s : squares) {
-    std::array<int, 4> ids{}, uv_ids{};
-    for (int k = 0; k < 4; ++k) {
-      const SquareCorner& c = s.corners[k];
-      const auto [it, added] = vertex_of.emplace(c.key, static_cast<int>(positions.size()));
-      if (added) {
-        positions.push_back(corner_position(map, c));
-        keys.push_back(c.key);
-        barycentrics.push_back(c.barycentric);
-        faces.push_back(c.face);
+  const int m = static_cast<int>(squares.size());
+  q.Q.resize(m, 4);
+  q.QUV.resize(m, 4);
+  std::vector<const SquareCorner*> first_seen;  // per vertex: the corner that made it
+  std::vector<const SquareCorner*> uv_first_seen;  // per UV row: the same
+  {  // the maps are freed before the vertices' rows are made (the extraction's peak memory)
+    std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> vertex_of, uv_of;
+    vertex_of.reserve(squares.size() + squares.size() / 4);
+    uv_of.reserve(squares.size() + squares.size() / 4);
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < 4; ++k) {
+        const SquareCorner& c = squares[static_cast<size_t>(i)].corners[k];
+        const auto [it, added] = vertex_of.emplace(c.key, static_cast<int>(first_seen.size()));
+        if (added) {
+          first_seen.push_back(&c);
+          keys.push_back(c.key);
+        }
+        q.Q(i, k) = it->second;
+        const SurfacePointKey uv_key{SurfacePointKey::Vertex, it->second, std::llround(c.uv.x()), std::llround(c.uv.y())};
+        const auto [jt, uv_added] = uv_of.emplace(uv_key, static_cast<int>(uv_first_seen.size()));
+        if (uv_added) uv_first_seen.push_back(&c);
+        q.QUV(i, k) = jt->second;
       }
-      ids[k] = it->second;
-      const SurfacePointKey uv_key{SurfacePointKey::Vertex, ids[k], std::llround(c.uv.x()), std::llround(c.uv.y())};
-      const auto [jt, uv_added] = uv_of.emplace(uv_key, static_cast<int>(uvs.size()));
-      if (uv_added) uvs.push_back(c.uv);
-      uv_ids[k] = jt->second;
-    }
-    quads.push_back(ids);
-    quad_uvs.push_back(uv_ids);
   }
-  const int n = static_cast<int>(positions.size()), m = static_cast<int>(quads.size());
+  const int n = static_cast<int>(first_seen.size());
   q.V.resize(n, 3);
   q.vertex_face.resize(n);
   q.vertex_barycentric.resize(n, 3);
   for (int i = 0; i < n; ++i) {
-    q.V.row(i) = positions[i].transpose();
-    q.vertex_face(i) = faces[i];
-    q.vertex_barycentric.row(i) = barycentrics[i].transpose();
+    const SquareCorner& c = *first_seen[static_cast<size_t>(i)];
+    q.V.row(i) = corner_position(map, c).transpose();
+    q.vertex_face(i) = c.face;
+    q.vertex_barycentric.row(i) = c.barycentric.transpose();
   }
-  q.UV.resize(static_cast<int>(uvs.size()), 2);
-  for (size_t i = 0; i < uvs.size(); ++i) q.UV.row(static_cast<int>(i)) = uvs[i].transpose();
-  q.Q.resize(m, 4);
-  q.QUV.resize(m, 4);
-  for (int i = 0; i < m; ++i)
-    for (int k = 0; k < 4; ++k) q.Q(i, k) = quads[i][k], q.QUV(i, k) = quad_uvs[i][k];
+  q.UV.resize(static_cast<int>(uv_first_seen.size()), 2);
+  for (size_t i = 0; i < uv_first_seen.size(); ++i) q.UV.row(static_cast<int>(i)) = uv_first_seen[i]->uv.transpose();
   return q;
 }
 
 // The vertices whose quads form more than one fan (groups joined through the quad edges at
 // the vertex): two corners of quads that touch at the vertex alone, as across a pinched hole.
 int count_non_manifold_vertices(const QuadMesh& q) {
-  std::vector<std::vector<int>> quads_at(static_cast<size_t>(q.num_vertices()));
+  std::vector<int> start(static_cast<size_t>(q.num_vertices()) + 1, 0), quads_at(4 * static_cast<size_t>(q.num_quads()));
   for (int i = 0; i < q.num_quads(); ++i)
-    for (int k = 0; k < 4; ++k) quads_at[static_cast<size_t>(q.Q(i, k))].push_back(i);
+    for (int k = 0; k < 4; ++k) ++start[static_cast<size_t>(q.Q(i, k)) + 1];
+  for (size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+  std::vector<int> filled(start.begin(), start.end() - 1);
+  for (int i = 0; i < q.num_quads(); ++i)
+    for (int k = 0; k < 4; ++k) quads_at[static_cast<size_t>(filled[static_cast<size_t>(q.Q(i, k))]++)] = i;
   int count = 0;
   for (int v = 0; v < q.num_vertices(); ++v) {
-    const std::vector<int>& around = quads_at[static_cast<size_t>(v)];
+    const std::vector<int> around(quads_at.begin() + start[static_cast<size_t>(v)],
+                                  quads_at.begin() + start[static_cast<size_t>(v) + 1]);
     UnionFind fans(static_cast<int>(around.size()));
     // Per neighbour w of v along a quad edge: the first quad seen with the edge v-w.
     std::unordered_map<int, int> first_with;
@@ -311,20 +352,24 @@ int count_non_manifold_vertices(const QuadMesh& q) {
 // Edges, boundary, manifoldness, holes, Euler characteristic and valences of the quad mesh.
 void check_topology(QuadExtraction& x) {
   const QuadMesh& q = x.mesh;
-  std::unordered_map<std::uint64_t, int> directed;
+  std::vector<std::uint64_t> directed;  // sorted, with repeats (a map's nodes cost 5 times the memory)
+  directed.reserve(4 * static_cast<size_t>(q.num_quads()));
   std::vector<int> valence(q.num_vertices(), 0);
   for (int i = 0; i < q.num_quads(); ++i)
     for (int k = 0; k < 4; ++k) {
-      ++directed[directed_edge(q.Q(i, k), q.Q(i, (k + 1) % 4))];
+      directed.push_back(directed_edge(q.Q(i, k), q.Q(i, (k + 1) % 4)));
       ++valence[q.Q(i, k)];
     }
+  std::sort(directed.begin(), directed.end());
   UnionFind boundary(q.num_vertices());
   std::vector<char> on_boundary(q.num_vertices(), 0);
   int undirected_twice = 0;
-  for (const auto& [key, count] : directed) {
+  for (size_t first = 0, next = 0; first < directed.size(); first = next) {
+    while (next < directed.size() && directed[next] == directed[first]) ++next;
+    const std::uint64_t key = directed[first];
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (count > 1) ++x.non_manifold_edges;
-    if (directed.count(directed_edge(b, a))) {
+    if (next - first > 1) ++x.non_manifold_edges;
+    if (std::binary_search(directed.begin(), directed.end(), directed_edge(b, a))) {
       ++undirected_twice;
       continue;
     }
@@ -404,6 +449,7 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
       squares.touching_flips + squares.wrapped + squares.not_covered_once + squares.overlapping + squares.inverted;
   std::vector<SurfacePointKey> keys;  // each quad-mesh vertex's surface point
   x.mesh = assemble(map, squares.quads, keys);
+  std::vector<Square>().swap(squares.quads);  // not needed any more: the rest of the peak memory
   if (options.fill_holes) {
     std::vector<int> cone_quarters(keys.size(), 0);
     for (size_t v = 0; v < keys.size(); ++v)
