@@ -31,7 +31,7 @@ struct InterpArgs {
 std::string frame_path(const std::string& prefix, double t, const std::string& source) {
   std::string ext = std::filesystem::path(source).extension().string();
   if (ext.empty()) ext = ".obj";
-  return prefix + "_" + shown_number(t) + ext;
+  return prefix + "_" + io_detail::exact_text(t) + ext;
 }
 
 // interp --report DIR: one section, the source pose then every frame side by side in one
@@ -116,15 +116,10 @@ int run_interp(const InterpArgs& a) {
   for (double& t : times) t += 0.0;  // -0 is 0 (it wrote PREFIX_-0 beside PREFIX_0, the same frame)
   for (size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
-    const std::string shown = shown_number(t);
+    const std::string shown = io_detail::exact_text(t);  // also the frame's file name: never alike for two times
     if (!(t >= 0.0 && t <= 1.0)) throw InputError("--t: " + shown + " is outside [0, 1]");
-    // Times printed alike name one file (%g: 0.33333333 and 0.333333334 both give 0.333333).
-    for (size_t j = 0; j < i; ++j) {
-      if (shown_number(times[j]) == shown)
-        throw InputError("--t: " + shown + " is given twice" +
-                         (times[j] == t ? "" : " (as printed in the frame's file name, %g)") +
-                         " (each time writes its own file)");
-    }
+    for (size_t j = 0; j < i; ++j)
+      if (times[j] == t) throw InputError("--t: " + shown + " is given twice (each time writes its own file)");
   }
   if (!a.out.distortion.empty() && times.size() != 1)
     throw InputError("--distortion writes one frame: give a single --t value with it");
@@ -152,7 +147,8 @@ int run_interp(const InterpArgs& a) {
   progress(a.out, "interp: " + std::to_string(source.num_elements()) + " elements (" + interp_kind_name(interp.kind()) +
                       "), method " + a.solver.method + ", " + std::to_string(times.size()) + " frame(s)");
 
-  nlohmann::json s = interp_summary(source, interp.kind(), options, a.source, a.target);
+  if (!interp.warning().empty()) progress(a.out, "interp: warning: " + interp.warning());
+  nlohmann::json s = interp_summary(source, interp, options, a.source, a.target);
   nlohmann::json frames = nlohmann::json::array();
   SolveStatus worst = SolveStatus::Solved;
   Eigen::VectorXd last_distortion;
@@ -226,7 +222,10 @@ void add_interp_command(CLI::App& app, int& exit_code) {
                     "maximum rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten");
   // Interpolation's targets are the blended shapes' rotations: local-global does not
   // extrapolate them (a value here would be ignored).
-  const CLI::Option* extrapolation = cmd->get_option("--lg-extrapolation");
+  CLI::Option* extrapolation = cmd->get_option("--lg-extrapolation");
+  extrapolation->description("Refused by interp (its targets are the blended shapes' rotations, which local-global "
+                             "does not extrapolate)");
+  extrapolation->default_str("");
   cmd->callback([args, &exit_code, extrapolation] {
     if (extrapolation->count() > 0)
       throw InputError("--lg-extrapolation does not apply to interp: its targets are the blended shapes' rotations, "

@@ -149,6 +149,34 @@ TEST(Interp, TetBarTwist) {
   }
 }
 
+// A long tet bar twisted about its axis: up to 270 degrees the rotations unwrap without a
+// jump and the half-way frame is the half twist (no flip); at 540 degrees the elements near a
+// full turn have rotations near the identity about their own small tilt, no logarithm of
+// which is near their neighbours' (nearly 2 pi about the axis): the frame folded (6 flipped
+// tets) and said nothing. The jumps are counted and the interpolator warns.
+TEST(Interp, TwistsOfAFullTurnOrMoreAreCountedAsJumps) {
+  const double length = 30.0;
+  const Mesh bar = make_tet_box(60, 2, 2, length, 1.0, 1.0);
+  const auto twisted = [&](double degrees) {
+    Mesh target = bar;
+    for (int v = 0; v < bar.num_vertices(); ++v) {
+      const double a = bar.V(v, 0) / length * degrees / 180.0 * kPi, y = bar.V(v, 1) - 0.5, z = bar.V(v, 2) - 0.5;
+      target.V(v, 1) = std::cos(a) * y - std::sin(a) * z;
+      target.V(v, 2) = std::sin(a) * y + std::cos(a) * z;
+    }
+    return target;
+  };
+  const Interpolator quarter_turns(bar, twisted(270));
+  EXPECT_EQ(quarter_turns.rotation_jumps(), 0);
+  EXPECT_TRUE(quarter_turns.warning().empty());
+  const InterpFrame half = quarter_turns.at(0.5, options_for(Method::L2));
+  EXPECT_EQ(half.stats.flipped, 0);
+  EXPECT_LT(half.stats.max, 0.05);
+  const Interpolator turn_and_a_half(bar, twisted(540));
+  EXPECT_GT(turn_and_a_half.rotation_jumps(), 0);
+  EXPECT_NE(turn_and_a_half.warning().find("blended rotations jump"), std::string::npos) << turn_and_a_half.warning();
+}
+
 // direct's levels on an interpolation: every level is the whole problem (the shapes Y_T(t) are
 // per element of it; a level restricted to its moving region renumbered the elements and took
 // other elements' shapes: the tet bar's third level was declared infeasible). Solved, with

@@ -279,7 +279,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   refuse_measure_keys(o, std::nullopt);
   if (times.empty()) throw InputError("t needs at least one time in [0, 1]");
   for (double t : times)
-    if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + std::to_string(t) + " is outside [0, 1]");
+    if (!(t >= 0.0 && t <= 1.0)) throw InputError("t: " + io_detail::exact_text(t) + " is outside [0, 1]");
   const Mesh source = make_mesh(V, F, "source", true, nullptr);
   // The same vertices; their dimensions may differ (a planar source and a 3D target: a
   // surface interpolation, as the command line reads such files).
@@ -310,7 +310,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   py::list out;
   for (size_t i = 0; i < frames.size(); ++i) {
     const InterpFrame& f = frames[i];
-    nlohmann::json s = interp_summary(source, interp->kind(), options, "", "");
+    nlohmann::json s = interp_summary(source, *interp, options, "", "");
     nlohmann::json frame = interp_frame_summary(f, options, "");
     frame["time_s"] = seconds[i];
     s["frames"] = nlohmann::json::array({frame});
@@ -318,6 +318,8 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
     add_provenance_summary(s);
     py::dict r = result_dict(f.result, "positions", f.mesh.V, f.result.distortion, f.weights, "local-global", s);
     r["t"] = f.t;
+    r["rotation_jumps"] = interp->rotation_jumps();
+    r["warnings"] = s["warnings"].get<std::vector<std::string>>();
     out.append(r);
   }
   return out;

@@ -171,6 +171,12 @@ inline void append_real(std::string& out, Real value) {
   out.append(buffer, ptr);
 }
 inline void append_number(std::string& out, double value) { append_real(out, value); }
+// The same as a string: two different numbers never print alike (messages, file names).
+inline std::string exact_text(double value) {
+  std::string out;
+  append_real(out, value);
+  return out;
+}
 inline void append_number(std::string& out, float value) { append_real(out, value); }
 
 inline void append_number(std::string& out, long value) {

@@ -223,13 +223,15 @@ nlohmann::json gparam_summary(const Mesh& mesh, const GParamOptions& o, const GP
   return s;
 }
 
-nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpOptions& options,
+nlohmann::json interp_summary(const Mesh& source, const Interpolator& interp, const InterpOptions& options,
                               const std::string& source_name, const std::string& target_name) {
   nlohmann::json s;
   s["task"] = "interp";
   s["source"] = source_name;
   s["target"] = target_name;
-  s["kind"] = interp_kind_name(kind);
+  s["kind"] = interp_kind_name(interp.kind());
+  s["rotation_jumps"] = interp.rotation_jumps();
+  s["warnings"] = interp.warning().empty() ? nlohmann::json::array() : nlohmann::json::array({interp.warning()});
   s["method"] = method_name(options.solver.method);
   s["elements"] = source.num_elements();
   s["vertices"] = source.num_vertices();

@@ -77,9 +77,9 @@ nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtrac
 // The summary's `reason` when the quad mesh is not complete.
 std::string quad_extraction_phrase(const QuadExtraction& x);
 
-// interp: the keys around the frames (source, target, kind, method, elements, vertices, pin,
-// lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.
-nlohmann::json interp_summary(const Mesh& source, InterpKind kind, const InterpOptions& options,
+// interp: the keys around the frames (source, target, kind, rotation_jumps, warnings, method,
+// elements, vertices, pin, lg_iterations_cap, lg_tolerance); the caller adds frames and time_s.
+nlohmann::json interp_summary(const Mesh& source, const Interpolator& interp, const InterpOptions& options,
                               const std::string& source_name, const std::string& target_name);
 
 // One entry of interp's frames: every key but time_s. `output` is the frame's file ("" for none).

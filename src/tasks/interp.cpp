@@ -12,6 +12,7 @@
 #include "strictmin/measures/polar.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/tasks/rotation_unwrap.h"
+#include "io/text_parse.h"
 #include "mesh/image_sizes.h"
 
 namespace strictmin {
@@ -113,12 +114,20 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
     }
   }
   const auto neighbours = element_neighbours(problem_.elements);
-  logs_ = logs.cols() == 1 ? Eigen::MatrixXd(unwrap_angles(neighbours, logs.col(0))) : unwrap_rotation_vectors(neighbours, logs);
+  logs_ = logs.cols() == 1 ? Eigen::MatrixXd(unwrap_angles(neighbours, logs.col(0)))
+                            : unwrap_rotation_vectors(neighbours, logs, &rotation_jumps_);
 
   // Connected parts (each gets its own pin).
   ElementParts parts = element_parts(problem_);
   component_ = std::move(parts.part);
   num_components_ = parts.count;
+}
+
+std::string Interpolator::warning() const {
+  if (rotation_jumps_ == 0) return "";
+  return std::to_string(rotation_jumps_) + " elements' rotations have no logarithm within 180 degrees of their " +
+         "neighbour's (the poses twist by about a full turn there): their blended rotations jump, and the frames may " +
+         "distort or fold around them; check each frame's flipped count and distortion (docs/interp.md, \"Limits\")";
 }
 
 Eigen::MatrixXd Interpolator::targets_at(double t, Eigen::MatrixXd* shapes) const {
@@ -143,7 +152,7 @@ Eigen::MatrixXd Interpolator::targets_at(double t, Eigen::MatrixXd* shapes) cons
 }
 
 InterpFrame Interpolator::at(double t, const InterpOptions& options) const {
-  if (!(t >= 0.0 && t <= 1.0)) throw InputError("interpolation time t = " + std::to_string(t) + " is outside [0, 1]");
+  if (!(t >= 0.0 && t <= 1.0)) throw InputError("interpolation time t = " + io_detail::exact_text(t) + " is outside [0, 1]");
   const Method method = options.solver.method;
   if (method == Method::Exact)
     throw InputError("interp: --method exact (the exact strict minimizer) is for field deviation only; use --method "

@@ -77,8 +77,10 @@ Eigen::VectorXd unwrap_angles(const std::vector<std::vector<int>>& neighbours, c
   return out;
 }
 
-Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w) {
+Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w,
+                                        int* jumps) {
   Eigen::MatrixXd out = w;
+  if (jumps) *jumps = 0;
   breadth_first(neighbours, [&](int e, int parent) {
     if (parent < 0) return;
     const Eigen::Vector3d v = w.row(e).transpose(), reference = out.row(parent).transpose();
@@ -95,6 +97,7 @@ Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& nei
       if ((candidate - reference).norm() < (best - reference).norm()) best = candidate;
     }
     out.row(e) = best.transpose();
+    if (jumps && (best - reference).norm() > std::numbers::pi) ++*jumps;
   });
   return out;
 }

@@ -102,6 +102,19 @@ class Interp(unittest.TestCase):
 
     def test_bad_options(self):
         self.assertIn("outside [0, 1]", run("interp", self.src, self.dst, "--t", "1.5", check_code=1).stderr)
+        # Times just outside [0, 1] are shown as given (they read "1 is outside [0, 1]").
+        self.assertIn("--t: 1.0000001 is outside [0, 1]",
+                      run("interp", self.src, self.dst, "--t", "1.0000001", check_code=1).stderr)
+        self.assertIn("--t: -1e-09 is outside [0, 1]", run("interp", self.src, self.dst, "--t=-1e-9", check_code=1).stderr)
+        # A time that %g rounds to 1 was written under t = 1's name (the target's frame).
+        prefix = os.path.join(self.dir, "near")
+        run("interp", self.src, self.dst, "--t", "0.99999999,1", "-o", prefix, "--quiet")
+        self.assertTrue(os.path.exists(prefix + "_0.99999999.obj"))
+        self.assertTrue(os.path.exists(prefix + "_1.obj"))
+        # --lg-extrapolation is refused by interp: its help says so rather than show a default.
+        help_line = [l for l in run("interp", "--help").stdout.splitlines() if "--lg-extrapolation" in l]
+        self.assertEqual(len(help_line), 1)
+        self.assertNotIn("0.5", help_line[0])
         # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
         self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
         self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)

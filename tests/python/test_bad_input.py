@@ -185,6 +185,9 @@ def test_tasks(square):
         strictmin.param(surface, F, measure="qc", method="relax")
     with pytest.raises(ValueError, match="outside \\[0, 1\\]"):
         strictmin.interp(V, F, V * 2, 1.5)
+    # Shown as given (it read "t: -0.000000 is outside [0, 1]").
+    with pytest.raises(ValueError, match="t: -1e-09 is outside"):
+        strictmin.interp(V, F, V * 2, -1e-9)
     with pytest.raises(ValueError, match="target has"):
         strictmin.interp(V, F, V[:-1], 0.5)
     with pytest.raises(ValueError, match="pin"):

@@ -63,6 +63,12 @@ class Interpolator {
   const Problem& problem() const { return problem_; }
   // Per element the unwrapped rotation: angle (#E by 1) in 2D, rotation vector (#E by 3) in 3D.
   const Eigen::MatrixXd& rotation_logs() const { return logs_; }
+  // 3D: the elements whose rotation has no logarithm near their spanning-tree parent's
+  // (rotation_unwrap.h): 0 unless the poses twist by about a full turn or more. Where it is not
+  // 0 the frames blend across a jump and may fold (warning()).
+  int rotation_jumps() const { return rotation_jumps_; }
+  // Empty, or a sentence saying where the frames cannot follow the poses' rotations.
+  std::string warning() const;
 
  private:
   Eigen::MatrixXd targets_at(double t, Eigen::MatrixXd* shapes) const;
@@ -75,6 +81,7 @@ class Interpolator {
   Eigen::MatrixXd frames_;          // surfaces: #E*3 by 2, the source triangle's 3D frame
   Eigen::MatrixXd shapes_;          // #E*d by d: Y_T
   Eigen::MatrixXd logs_;
+  int rotation_jumps_ = 0;
   std::vector<int> component_;      // per vertex: connected part (-1 when in no element)
   int num_components_ = 0;
 };

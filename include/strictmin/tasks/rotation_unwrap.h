@@ -18,7 +18,13 @@ std::vector<std::vector<int>> element_neighbours(const Eigen::MatrixXi& F);
 Eigen::VectorXd unwrap_angles(const std::vector<std::vector<int>>& neighbours, const Eigen::VectorXd& angles);
 
 // 3D: rotation vectors (#E by 3, angle in [0, pi]) replaced by the equivalent vector
-// (angle + 2 pi k) * axis closest to the BFS parent's (|k| <= 2).
-Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w);
+// (angle + 2 pi k) * axis closest to the BFS parent's (|k| <= 2). `jumps` (optional): the
+// elements whose closest one is still more than pi from the parent's, where the blended
+// rotations jump instead of turning together. That happens around a twist of a full turn or
+// more: an element turned by nearly 2 pi has a rotation near the identity whose axis is its
+// own small tilt, and none of its logarithms lies near its parent's (nearly 2 pi about the
+// twist's axis). (In 2D a parent's angle is always within pi.)
+Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w,
+                                        int* jumps = nullptr);
 
 }  // namespace strictmin
