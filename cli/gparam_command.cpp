@@ -124,7 +124,7 @@ QuadOutput extract_quad_mesh(const GParamArgs& a, const GParamOutcome& g) {
     quads.summary = {{"status", "not-extracted"},
                      {"reason", "the map has about " + std::to_string(std::llround(squares)) +
                                     " unit squares (--quads / --edge-length), more than quad extraction takes (1e7, "
-                                    "about 8 GB)"},
+                                    "about 5.5 GB)"},
                      {"file", ""}};
   else
     quads = write_quad_mesh(g.mapped, a.quad_mesh, a.mesh, quad_options(a));
