@@ -101,17 +101,6 @@ QuadExtractionOptions quad_options(const GParamArgs& a) {
   return o;
 }
 
-// The UV area of the map's triangles of positive area: about the unit squares it has.
-double positive_uv_area(const Mesh& map) {
-  double area = 0;
-  for (int f = 0; f < map.num_elements(); ++f) {
-    const Eigen::Vector2d p = map.UV.row(map.FUV(f, 0)).transpose(), a = map.UV.row(map.FUV(f, 1)).transpose() - p,
-                          b = map.UV.row(map.FUV(f, 2)).transpose() - p;
-    area += std::max(0.0, a.x() * b.y() - a.y() * b.x()) / 2;
-  }
-  return area;
-}
-
 // The quad mesh of gparam's map, or why not. A map finer than the extraction takes is said in
 // gparam's terms (the extraction's own message asks whether the UVs are in grid units).
 QuadOutput extract_quad_mesh(const GParamArgs& a, const GParamOutcome& g) {

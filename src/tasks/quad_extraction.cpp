@@ -50,6 +50,12 @@ UvExtent uv_extent(const Mesh& map) {
   return x;
 }
 
+}  // namespace
+
+double positive_uv_area(const Mesh& map) { return uv_extent(map).positive_area; }
+
+namespace {
+
 void check_extent(const Mesh& map, const std::string& source) {
   const UvExtent x = uv_extent(map);
   if (x.positive_area > kMaxSquares || x.cells > kMaxCells || x.max_uv > kMaxUv)
@@ -180,6 +186,28 @@ Squares flood_every_square(const Mesh& map, const SurfaceGraph& graph, const std
   return out;
 }
 
+// Per corner id, the quads having it (those `keep` marks, or all): the quads of corner v are
+// at[start[v]] .. at[start[v + 1] - 1], in order.
+struct QuadsAtCorners {
+  std::vector<int> start, at;
+};
+
+QuadsAtCorners quads_at_corners(const std::vector<std::array<int, 4>>& quads, int num_corners,
+                                const std::vector<char>* keep = nullptr) {
+  QuadsAtCorners c;
+  c.start.assign(static_cast<size_t>(num_corners) + 1, 0);
+  for (size_t i = 0; i < quads.size(); ++i)
+    if (!keep || (*keep)[i])
+      for (int v : quads[i]) ++c.start[static_cast<size_t>(v) + 1];
+  for (size_t v = 0; v + 1 < c.start.size(); ++v) c.start[v + 1] += c.start[v];
+  c.at.resize(static_cast<size_t>(c.start.back()));
+  std::vector<int> filled(c.start.begin(), c.start.end() - 1);
+  for (size_t i = 0; i < quads.size(); ++i)
+    if (!keep || (*keep)[i])
+      for (int v : quads[i]) c.at[static_cast<size_t>(filled[static_cast<size_t>(v)]++)] = static_cast<int>(i);
+  return c;
+}
+
 // One id per surface point (SquareCorner::key), per square its four corners' ids.
 std::vector<std::array<int, 4>> corner_ids(const std::vector<Square>& squares) {
   std::unordered_map<SurfacePointKey, int, SurfacePointKeyHash> id_of;
@@ -242,24 +270,15 @@ void drop_overlapping_squares(Squares& squares) {
     const auto range = std::equal_range(edges.begin(), edges.end(), e);
     return range.second - range.first > 1;
   };
-  std::vector<int> start(static_cast<size_t>(num_ids) + 1, 0), at;  // per corner id: the kept squares having it
-  for (size_t i = 0; i < n; ++i)
-    if (keep[i])
-      for (int k = 0; k < 4; ++k) ++start[static_cast<size_t>(ids[i][k]) + 1];
-  for (size_t v = 0; v < static_cast<size_t>(num_ids); ++v) start[v + 1] += start[v];
-  at.resize(static_cast<size_t>(start.back()));
-  std::vector<int> filled(start.begin(), start.end() - 1);
-  for (size_t i = 0; i < n; ++i)
-    if (keep[i])
-      for (int k = 0; k < 4; ++k) at[static_cast<size_t>(filled[static_cast<size_t>(ids[i][k])]++)] = static_cast<int>(i);
+  const QuadsAtCorners around = quads_at_corners(ids, num_ids, &keep);
   std::vector<char> overlaps(n, 0);
   for (size_t i = 0; i < n; ++i) {
     if (!keep[i]) continue;
     for (int k = 0; k < 4 && !overlaps[i]; ++k) {
       overlaps[i] = runs_twice(directed_edge(ids[i][k], ids[i][(k + 1) % 4]));
       const size_t v = static_cast<size_t>(ids[i][k]);
-      for (int a = start[v]; a < start[v + 1] && !overlaps[i]; ++a) {
-        const size_t j = static_cast<size_t>(at[static_cast<size_t>(a)]);
+      for (int a = around.start[v]; a < around.start[v + 1] && !overlaps[i]; ++a) {
+        const size_t j = static_cast<size_t>(around.at[static_cast<size_t>(a)]);
         overlaps[i] = j != i && share_more_than_a_side(ids[i], ids[j]);
       }
     }
@@ -320,17 +339,14 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vect
 // The vertices whose quads form more than one fan (groups joined through the quad edges at
 // the vertex): two corners of quads that touch at the vertex alone, as across a pinched hole.
 int count_non_manifold_vertices(const QuadMesh& q) {
-  std::vector<int> start(static_cast<size_t>(q.num_vertices()) + 1, 0), quads_at(4 * static_cast<size_t>(q.num_quads()));
+  std::vector<std::array<int, 4>> quads(static_cast<size_t>(q.num_quads()));
   for (int i = 0; i < q.num_quads(); ++i)
-    for (int k = 0; k < 4; ++k) ++start[static_cast<size_t>(q.Q(i, k)) + 1];
-  for (size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
-  std::vector<int> filled(start.begin(), start.end() - 1);
-  for (int i = 0; i < q.num_quads(); ++i)
-    for (int k = 0; k < 4; ++k) quads_at[static_cast<size_t>(filled[static_cast<size_t>(q.Q(i, k))]++)] = i;
+    for (int k = 0; k < 4; ++k) quads[static_cast<size_t>(i)][static_cast<size_t>(k)] = q.Q(i, k);
+  const QuadsAtCorners at = quads_at_corners(quads, q.num_vertices());
   int count = 0;
   for (int v = 0; v < q.num_vertices(); ++v) {
-    const std::vector<int> around(quads_at.begin() + start[static_cast<size_t>(v)],
-                                  quads_at.begin() + start[static_cast<size_t>(v) + 1]);
+    const std::vector<int> around(at.at.begin() + at.start[static_cast<size_t>(v)],
+                                  at.at.begin() + at.start[static_cast<size_t>(v) + 1]);
     UnionFind fans(static_cast<int>(around.size()));
     // Per neighbour w of v along a quad edge: the first quad seen with the edge v-w.
     std::unordered_map<int, int> first_with;

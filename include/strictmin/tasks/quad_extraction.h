@@ -28,6 +28,10 @@ namespace strictmin {
 // The most unit squares extract_quads takes (UV area of the triangles of positive area).
 inline constexpr double kMaxQuadExtractionSquares = 1e7;
 
+// The UV area of the map's triangles of positive area: about the unit squares it has (what
+// kMaxQuadExtractionSquares bounds). The map must have per-corner UVs.
+double positive_uv_area(const Mesh& map);
+
 struct QuadExtractionOptions {
   // UV units: how far a seam translation or a cone may be from the grid, and how close to a
   // vertex or an edge a grid point counts as on it.
