@@ -17,7 +17,7 @@ namespace strictmin::cli {
 namespace {
 
 struct InterpArgs {
-  std::string source, target, output, pin = "centroid";
+  std::string source, target, output, pin = "centroid", rotation_blend = "auto";
   std::vector<std::string> times{"0.5"};  // as given: comma-separated lists (parse_times)
   int lg_iterations = 100;
   double lg_tolerance = 1e-4;
@@ -27,7 +27,7 @@ struct InterpArgs {
   ReportArgs report;
 };
 
-// "PREFIX_0.25.obj": t printed with %g, the extension taken from SOURCE.
+// "PREFIX_0.25.obj": t in its shortest exact text, the extension taken from SOURCE.
 std::string frame_path(const std::string& prefix, double t, const std::string& source) {
   std::string ext = std::filesystem::path(source).extension().string();
   if (ext.empty()) ext = ".obj";
@@ -140,7 +140,7 @@ int run_interp(const InterpArgs& a) {
   loose.check_geometry = false;  // a target pose may have inverted or flat elements
   const Mesh target = read_mesh(a.target, &warnings, loose);
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
-  const Interpolator interp(source, target, a.source, a.target);
+  const Interpolator interp(source, target, a.source, a.target, parse_rotation_blend(a.rotation_blend, "--rotation-blend"));
   if (options.pin_vertex >= source.num_vertices())
     throw InputError("--pin " + a.pin + ": " + a.source + " has " + std::to_string(source.num_vertices()) +
                      " vertices (0-based indices)");
@@ -187,7 +187,7 @@ void add_interp_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "interp",
       "Interpolate between two poses of one mesh (same elements): at each time t every element's shape is blended "
-      "linearly and its rotation along the shortest consistent turn, then the map closest to these is found with "
+      "linearly and its rotation along a turn consistent with its neighbours' (--rotation-blend), then the map closest to these is found with "
       "the chosen method (local-global). Writes PREFIX_<t><ext of SOURCE> per t.");
   cmd->add_option("source", args->source, "Source pose (.obj/.off triangles, planar or a 3D surface; .mesh tets)")
       ->required();
@@ -196,10 +196,16 @@ void add_interp_command(CLI::App& app, int& exit_code) {
       ->type_name("LIST")
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output,
-                  "Output prefix: frame t goes to PREFIX_<t>.<ext>, t printed with %g (0.25, 0.5, 1), ext from SOURCE")
+                  "Output prefix: frame t goes to PREFIX_<t>.<ext>, t in its shortest exact text (0.25, 0.5, 1), ext from SOURCE")
       ->type_name("PREFIX");
   cmd->add_option("--pin", args->pin,
                   "What moves linearly from source to target: 'centroid' (vertex mean) or a vertex index (0-based)")
+      ->capture_default_str();
+  cmd->add_option("--rotation-blend", args->rotation_blend,
+                  "3D poses: how rotations are blended: 'logarithms' (each element's own, scaled by t), 'tree' "
+                  "(relative to the neighbours' along a spanning tree: follows twists of a full turn or more) or "
+                  "'auto' (logarithms unless they jump somewhere, then tree)")
+      ->type_name("WORD")
       ->capture_default_str();
   cmd->add_option("--lg-iterations", args->lg_iterations,
                   "Local-global iteration cap (0: one solve with the interpolated rotations, no local steps)")

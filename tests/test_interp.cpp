@@ -149,12 +149,14 @@ TEST(Interp, TetBarTwist) {
   }
 }
 
-// A long tet bar twisted about its axis: up to 270 degrees the rotations unwrap without a
-// jump and the half-way frame is the half twist (no flip); at 540 degrees the elements near a
-// full turn have rotations near the identity about their own small tilt, no logarithm of
-// which is near their neighbours' (nearly 2 pi about the axis): the frame folded (6 flipped
-// tets) and said nothing. The jumps are counted and the interpolator warns.
-TEST(Interp, TwistsOfAFullTurnOrMoreAreCountedAsJumps) {
+// A long tet bar twisted about its axis. Up to 270 degrees the rotations unwrap without a
+// jump and the half-way frame is the half twist. At 540 degrees the elements near a full
+// turn have rotations near the identity about their own small tilt, no logarithm of which
+// is near their neighbours' (nearly 2 pi about the axis): blended each on its own, the
+// frames folded (6 flipped tets, "solved", no word). The jumps are counted; the rotations
+// are then blended relative to their neighbours' along a tree, which follows the twist: the
+// half-way frame is the bar twisted by 270 degrees, end to end, with nothing folded.
+TEST(Interp, TwistsOfAFullTurnOrMoreAreFollowed) {
   const double length = 30.0;
   const Mesh bar = make_tet_box(60, 2, 2, length, 1.0, 1.0);
   const auto twisted = [&](double degrees) {
@@ -166,15 +168,93 @@ TEST(Interp, TwistsOfAFullTurnOrMoreAreCountedAsJumps) {
     }
     return target;
   };
+  // The angle (degrees) in the yz plane of cross-section k (x = k length / 60) of a pose of the
+  // bar: its diagonal from corner (y, z) = (0, 0) to (1, 1).
+  const auto section_angle = [&](const Mesh& m, int k) {
+    Eigen::RowVector3d low = Eigen::RowVector3d::Zero(), high = low;
+    for (int v = 0; v < bar.num_vertices(); ++v) {
+      if (std::abs(bar.V(v, 0) - k * length / 60) > 1e-9) continue;
+      if (bar.V(v, 1) < 1e-9 && bar.V(v, 2) < 1e-9) low = m.V.row(v);
+      if (bar.V(v, 1) > 1 - 1e-9 && bar.V(v, 2) > 1 - 1e-9) high = m.V.row(v);
+    }
+    return std::atan2(high(2) - low(2), high(1) - low(1)) * 180.0 / kPi;
+  };
+  const auto turn_between = [](double from, double to) { return std::remainder(to - from, 360.0); };
+
   const Interpolator quarter_turns(bar, twisted(270));
   EXPECT_EQ(quarter_turns.rotation_jumps(), 0);
+  EXPECT_EQ(quarter_turns.rotation_blend(), "logarithms");
   EXPECT_TRUE(quarter_turns.warning().empty());
-  const InterpFrame half = quarter_turns.at(0.5, options_for(Method::L2));
-  EXPECT_EQ(half.stats.flipped, 0);
-  EXPECT_LT(half.stats.max, 0.05);
+  const InterpFrame quarter = quarter_turns.at(0.5, options_for(Method::L2));
+  EXPECT_EQ(quarter.stats.flipped, 0);
+  EXPECT_LT(quarter.stats.max, 0.05);
+
   const Interpolator turn_and_a_half(bar, twisted(540));
   EXPECT_GT(turn_and_a_half.rotation_jumps(), 0);
-  EXPECT_NE(turn_and_a_half.warning().find("blended rotations jump"), std::string::npos) << turn_and_a_half.warning();
+  EXPECT_EQ(turn_and_a_half.rotation_blend(), "tree");
+  EXPECT_EQ(turn_and_a_half.rotation_disagreements(), 0);
+  EXPECT_TRUE(turn_and_a_half.warning().empty()) << turn_and_a_half.warning();
+  const InterpFrame half = turn_and_a_half.at(0.5, options_for(Method::L2));
+  EXPECT_EQ(half.stats.flipped, 0);
+  EXPECT_LT(half.stats.max, 0.05);
+  // The rest bar's cross-sections sit at 45 degrees. Half way the near end has not turned
+  // (within 2 degrees), and the sections turn by 270 degrees in all from end to end (within
+  // 3), each by 270 / 60 from the last (within 1): the twist is followed, not undone.
+  EXPECT_NEAR(turn_between(45.0, section_angle(half.mesh, 0)), 0.0, 2.0);
+  double total = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double step = turn_between(section_angle(half.mesh, k), section_angle(half.mesh, k + 1));
+    EXPECT_NEAR(step, 270.0 / 60, 1.0) << "section " << k;
+    total += step;
+  }
+  EXPECT_NEAR(total, 270.0, 3.0);
+
+  // Blended each on its own, as before: the pairs that cannot turn together are counted and
+  // warned about.
+  const Interpolator logarithms(bar, twisted(540), "source", "target", RotationBlend::Logarithms);
+  EXPECT_EQ(logarithms.rotation_blend(), "logarithms");
+  EXPECT_GT(logarithms.rotation_disagreements(), 0);
+  EXPECT_NE(logarithms.warning().find("more than 90 degrees apart"), std::string::npos) << logarithms.warning();
+}
+
+// The tree blend (rotation_unwrap.h) on rotations about one axis, which commute: the same as
+// each element's own logarithm, exp(t theta_e a), however far they turn (here up to 3.4 turns),
+// with the least turned element as the root. And on arbitrary rotations: I at t = 0, the
+// rotations themselves at t = 1.
+TEST(Interp, TreeBlendOfRotationsAboutOneAxisIsExact) {
+  const int E = 41;
+  std::vector<std::vector<int>> chain(E);
+  for (int e = 0; e + 1 < E; ++e) {
+    chain[e].push_back(e + 1);
+    chain[e + 1].push_back(e);
+  }
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, 2, -2).normalized();
+  std::vector<Eigen::Matrix3d> R(E);
+  std::vector<double> theta(E);
+  for (int e = 0; e < E; ++e) {
+    theta[e] = 0.55 * (e - 3);
+    R[e] = rotation_exp(theta[e] * axis);
+  }
+  const TreeRotationBlend blend(chain, R);
+  for (double t : {0.0, 0.3, 0.5, 0.9, 1.0}) {
+    const std::vector<Eigen::Matrix3d> at = blend.at(t);
+    double worst = 0;
+    for (int e = 0; e < E; ++e) worst = std::max(worst, (at[e] - rotation_exp(t * theta[e] * axis)).norm());
+    EXPECT_LT(worst, 1e-12) << "t = " << t;
+    EXPECT_EQ(count_disagreeing_neighbours(chain, R, at, t, 1e-6), 0) << "t = " << t;
+  }
+
+  const Mesh box = make_tet_box(3, 2, 2, 3.0, 2.0, 2.0);
+  const auto neighbours = element_neighbours(box.F);
+  std::srand(7);
+  std::vector<Eigen::Matrix3d> random(box.num_elements());
+  for (auto& r : random) r = rotation_exp(3.0 * Eigen::Vector3d::Random());
+  const TreeRotationBlend arbitrary(neighbours, random);
+  const std::vector<Eigen::Matrix3d> at0 = arbitrary.at(0), at1 = arbitrary.at(1);
+  for (size_t e = 0; e < random.size(); ++e) {
+    EXPECT_LT((at0[e] - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_LT((at1[e] - random[e]).norm(), 1e-12);
+  }
 }
 
 // direct's levels on an interpolation: every level is the whole problem (the shapes Y_T(t) are

@@ -90,6 +90,7 @@ bool apply(TaskOptions& o, Task task, const std::string& key, py::handle v) {
     o.start = text(key, v);
     o.start_given = true;
   }
+  else if (key == "rotation_blend" && task == Task::Interp) o.rotation_blend = text(key, v);
   else if (key == "pin" && task == Task::Interp) {
     if (py::isinstance<py::str>(v)) {
       if (text(key, v) != "centroid")

@@ -22,6 +22,7 @@ struct TaskOptions {
   bool no_flips = false;      // deform, param: as --no-flips
   std::string start = "l2";   // deform arap / asap: l2 or rest
   int pin = -1;               // interp: -1 the centroid, else a vertex
+  std::string rotation_blend = "auto";  // interp: auto, logarithms or tree
   int threads = 0;            // 0: all cores
   std::string local_global_key;  // the first lg_* keyword given (refuse_local_global_keys)
   bool frame_iterations_given = false, start_given = false;  // refuse_measure_keys

@@ -300,7 +300,7 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
   std::vector<double> seconds;
   run_released([&] {
     const auto threads = limit_threads(o.threads);
-    interp.emplace(source, target, "source", "target");
+    interp.emplace(source, target, "source", "target", parse_rotation_blend(o.rotation_blend, "rotation_blend"));
     for (double t : times) {
       const auto tf = Clock::now();
       frames.push_back(interp->at(t, options));
@@ -319,6 +319,8 @@ py::list interp_py(const RowMatrixXd& V, const RowMatrixXi& F, const RowMatrixXd
     py::dict r = result_dict(f.result, "positions", f.mesh.V, f.result.distortion, f.weights, "local-global", s);
     r["t"] = f.t;
     r["rotation_jumps"] = interp->rotation_jumps();
+    r["rotation_blend"] = interp->rotation_blend();
+    r["rotation_disagreements"] = interp->rotation_disagreements();
     r["warnings"] = s["warnings"].get<std::vector<std::string>>();
     out.append(r);
   }

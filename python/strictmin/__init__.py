@@ -349,10 +349,10 @@ def gparam(V, F, method="l2", measure="fd", field=None, edge_length=None, quads=
 def interp(V, F, V_target, t, method="linf", *, progress=None, verbose=False, **options):
     """Interpolate between two poses of one mesh (same F) at time t in [0, 1] (a float: one
     Result; a list: a list of Results), local-global around the method. Options: pin
-    ('centroid' or a vertex), lg_iterations (0: no local steps), lg_tolerance and the
-    method's options. Returns Results with ``positions``, ``t``, ``rotation_jumps`` and
-    ``warnings`` (3D twists of about a full turn, which the blended rotations cannot follow:
-    docs/interp.md, "Limits")."""
+    ('centroid' or a vertex), rotation_blend ('auto', 'logarithms' or 'tree': 3D only),
+    lg_iterations (0: no local steps), lg_tolerance and the method's options. Returns Results
+    with ``positions``, ``t``, ``rotation_jumps``, ``rotation_blend``,
+    ``rotation_disagreements`` and ``warnings`` (docs/interp.md, "Limits")."""
     V = _vertices(V)
     F = _faces(F)
     V_target = _vertices(V_target, "V_target")

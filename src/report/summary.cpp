@@ -231,6 +231,8 @@ nlohmann::json interp_summary(const Mesh& source, const Interpolator& interp, co
   s["target"] = target_name;
   s["kind"] = interp_kind_name(interp.kind());
   s["rotation_jumps"] = interp.rotation_jumps();
+  s["rotation_blend"] = interp.rotation_blend();
+  s["rotation_disagreements"] = interp.rotation_disagreements();
   s["warnings"] = interp.warning().empty() ? nlohmann::json::array() : nlohmann::json::array({interp.warning()});
   s["method"] = method_name(options.solver.method);
   s["elements"] = source.num_elements();

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -60,7 +61,23 @@ std::string interp_kind_name(InterpKind k) {
   return "?";
 }
 
-Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::string& sn, const std::string& tn)
+std::string rotation_blend_name(RotationBlend b) {
+  switch (b) {
+    case RotationBlend::Auto: return "auto";
+    case RotationBlend::Logarithms: return "logarithms";
+    case RotationBlend::Tree: return "tree";
+  }
+  return "?";
+}
+
+RotationBlend parse_rotation_blend(const std::string& word, const std::string& flag) {
+  for (RotationBlend b : {RotationBlend::Auto, RotationBlend::Logarithms, RotationBlend::Tree})
+    if (word == rotation_blend_name(b)) return b;
+  throw InputError(flag + " takes auto, logarithms or tree, not '" + word + "'");
+}
+
+Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::string& sn, const std::string& tn,
+                           RotationBlend blend)
     : source_(source) {
   check_mesh_structure(source, sn);
   check_mesh_structure(target, tn);
@@ -69,6 +86,9 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
   if (source.num_elements() == 0) throw InputError(sn + " has no elements");
   if (source.F.cols() == 4) kind_ = InterpKind::Tets;
   else kind_ = source.is_planar() && target.is_planar() ? InterpKind::Planar : InterpKind::Surface;
+  if (kind_ == InterpKind::Planar && blend != RotationBlend::Auto)
+    throw InputError("rotation blend '" + rotation_blend_name(blend) + "' is for 3D poses (surfaces and tets); " + sn +
+                     " and " + tn + " are planar, whose rotations are angles (unwrapped without jumps)");
 
   problem_ = make_problem(source);
   const int E = problem_.num_elements();
@@ -116,6 +136,14 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
   const auto neighbours = element_neighbours(problem_.elements);
   logs_ = logs.cols() == 1 ? Eigen::MatrixXd(unwrap_angles(neighbours, logs.col(0)))
                             : unwrap_rotation_vectors(neighbours, logs, &rotation_jumps_);
+  if (logs.cols() == 3) {
+    // Where the logarithms jump the rotations are blended relative to their neighbours'.
+    std::vector<Eigen::Matrix3d> rotations(E);
+    for (int e = 0; e < E; ++e) rotations[e] = rotation_exp(logs.row(e).transpose());
+    const bool tree = blend == RotationBlend::Tree || (blend == RotationBlend::Auto && rotation_jumps_ > 0);
+    if (tree) tree_blend_ = TreeRotationBlend(neighbours, rotations);
+    rotation_disagreements_ = count_disagreeing_neighbours(neighbours, rotations, blended_rotations(0.5), 0.5, std::numbers::pi / 2);
+  }
 
   // Connected parts (each gets its own pin).
   ElementParts parts = element_parts(problem_);
@@ -123,24 +151,38 @@ Interpolator::Interpolator(const Mesh& source, const Mesh& target, const std::st
   num_components_ = parts.count;
 }
 
+std::vector<Eigen::Matrix3d> Interpolator::blended_rotations(double t) const {
+  if (!tree_blend_.empty()) return tree_blend_.at(t);
+  std::vector<Eigen::Matrix3d> out(logs_.rows());
+  for (Eigen::Index e = 0; e < logs_.rows(); ++e) out[e] = rotation_exp(t * logs_.row(e).transpose());
+  return out;
+}
+
+std::string Interpolator::rotation_blend() const {
+  if (kind_ == InterpKind::Planar) return "angles";
+  return tree_blend_.empty() ? "logarithms" : "tree";
+}
+
 std::string Interpolator::warning() const {
-  if (rotation_jumps_ == 0) return "";
-  return std::to_string(rotation_jumps_) + " elements' rotations have no logarithm within 180 degrees of their " +
-         "neighbour's (the poses twist by about a full turn there): their blended rotations jump, and the frames may " +
-         "distort or fold around them; check each frame's flipped count and distortion (docs/interp.md, \"Limits\")";
+  if (rotation_disagreements_ == 0) return "";
+  return std::to_string(rotation_disagreements_) + " pairs of neighbouring elements have blended rotations more " +
+         "than 90 degrees apart at t = 0.5 (the poses turn them by about 180 degrees relative to each other, or " +
+         "their rotations wind around a loop of elements): the frames may distort or fold there; check each " +
+         "frame's flipped count and distortion (docs/interp.md, \"Limits\")";
 }
 
 Eigen::MatrixXd Interpolator::targets_at(double t, Eigen::MatrixXd* shapes) const {
   const int n = problem_.image_dim, d = problem_.domain_dim, E = problem_.num_elements();
   Eigen::MatrixXd targets(static_cast<Eigen::Index>(E) * n, d);
   shapes->resize(static_cast<Eigen::Index>(E) * n, d);
+  const std::vector<Eigen::Matrix3d> rotations = kind_ == InterpKind::Planar ? std::vector<Eigen::Matrix3d>() : blended_rotations(t);
   for (int e = 0; e < E; ++e) {
     const Eigen::MatrixXd Yt = (1 - t) * Eigen::MatrixXd::Identity(d, d) + t * shapes_.middleRows(e * d, d);
     if (kind_ == InterpKind::Planar) {
       shapes->middleRows(e * 2, 2) = Yt;
       targets.middleRows(e * 2, 2) = rotation_2d(t * logs_(e, 0)) * Yt;
     } else {
-      const Eigen::Matrix3d R = rotation_exp(t * logs_.row(e).transpose());
+      const Eigen::Matrix3d& R = rotations[e];
       // Surfaces: the shape handed to the local step is Fs Y(t) (3 by 2), so its target
       // Q Fs Y(t) ranges over the same family U Y(t) (U with orthonormal columns).
       const Eigen::MatrixXd S = kind_ == InterpKind::Surface ? Eigen::MatrixXd(frames_.middleRows(e * 3, 3) * Yt) : Yt;

@@ -8,6 +8,8 @@
 #include <queue>
 #include <utility>
 
+#include "strictmin/measures/polar.h"
+
 namespace strictmin {
 namespace {
 
@@ -100,6 +102,78 @@ Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& nei
     if (jumps && (best - reference).norm() > std::numbers::pi) ++*jumps;
   });
   return out;
+}
+
+
+TreeRotationBlend::TreeRotationBlend(const std::vector<std::vector<int>>& neighbours,
+                                     const std::vector<Eigen::Matrix3d>& rotations) {
+  const int E = static_cast<int>(neighbours.size());
+  parent_.assign(E, -1);
+  order_.reserve(E);
+  // Each part's root: its least turned element (its own rotation blended the short way).
+  std::vector<int> part(E, -1), roots;
+  for (int first = 0; first < E; ++first) {
+    if (part[first] >= 0) continue;
+    part[first] = static_cast<int>(roots.size());
+    std::vector<int> stack{first};
+    int least = first;
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      if (rotation_log(rotations[e]).norm() < rotation_log(rotations[least]).norm()) least = e;
+      for (int f : neighbours[e])
+        if (part[f] < 0) {
+          part[f] = part[first];
+          stack.push_back(f);
+        }
+    }
+    roots.push_back(least);
+  }
+  std::vector<char> seen(E, 0);
+  for (int root : roots) {
+    seen[root] = 1;
+    const size_t begin = order_.size();
+    order_.push_back(root);
+    for (size_t i = begin; i < order_.size(); ++i)
+      for (int f : neighbours[order_[i]])
+        if (!seen[f]) {
+          seen[f] = 1;
+          parent_[f] = order_[i];
+          order_.push_back(f);
+        }
+  }
+  logs_.resize(E, 3);
+  for (int e : order_) {
+    const Eigen::Matrix3d relative = parent_[e] < 0 ? rotations[e] : Eigen::Matrix3d(rotations[parent_[e]].transpose() * rotations[e]);
+    logs_.row(e) = rotation_log(relative).transpose();
+  }
+}
+
+std::vector<Eigen::Matrix3d> TreeRotationBlend::at(double t) const {
+  std::vector<Eigen::Matrix3d> out(parent_.size());
+  for (int e : order_) {
+    const Eigen::Matrix3d step = rotation_exp(t * logs_.row(e).transpose());
+    out[e] = parent_[e] < 0 ? step : Eigen::Matrix3d(out[parent_[e]] * step);
+  }
+  return out;
+}
+
+}  // namespace strictmin
+
+namespace strictmin {
+
+int count_disagreeing_neighbours(const std::vector<std::vector<int>>& neighbours,
+                                 const std::vector<Eigen::Matrix3d>& rotations,
+                                 const std::vector<Eigen::Matrix3d>& blended, double t, double angle) {
+  int count = 0;
+  for (size_t e = 0; e < neighbours.size(); ++e)
+    for (int f : neighbours[e]) {
+      if (f < static_cast<int>(e)) continue;
+      const Eigen::Vector3d relative = rotation_log(rotations[e].transpose() * rotations[f]);
+      const Eigen::Matrix3d proposed = blended[e] * rotation_exp(t * relative);
+      if (rotation_log(proposed.transpose() * blended[f]).norm() > angle) ++count;
+    }
+  return count;
 }
 
 }  // namespace strictmin

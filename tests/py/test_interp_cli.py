@@ -54,6 +54,7 @@ class Interp(unittest.TestCase):
         s = json.loads(p.stdout)
         self.assertEqual(s["task"], "interp")
         self.assertEqual(s["kind"], "planar")
+        self.assertEqual((s["rotation_blend"], s["rotation_disagreements"], s["warnings"]), ("angles", 0, []))
         self.assertEqual(s["pin"], "centroid")
         self.assertEqual([f["t"] for f in s["frames"]], [0, 0.5, 1])
         for f, name in zip(s["frames"], ["frame_0.obj", "frame_0.5.obj", "frame_1.obj"]):
@@ -117,6 +118,11 @@ class Interp(unittest.TestCase):
         self.assertNotIn("0.5", help_line[0])
         # An empty time (it ran t = 0) and a time given twice (it wrote one file twice).
         self.assertIn("an empty time", run("interp", self.src, self.dst, "--t", "", check_code=1).stderr)
+        # --rotation-blend: planar rotations are angles (no jumps); other words are refused.
+        self.assertIn("is for 3D poses", run("interp", self.src, self.dst, "--rotation-blend", "tree",
+                                             check_code=1).stderr)
+        self.assertIn("--rotation-blend takes auto, logarithms or tree, not 'short'",
+                      run("interp", self.src, self.dst, "--rotation-blend", "short", check_code=1).stderr)
         self.assertIn("0.5 is given twice", run("interp", self.src, self.dst, "--t", "0.5,0.5", check_code=1).stderr)
         # An empty item of a list (the option parser dropped it: "0.5,,1" ran two frames).
         for times in ("0.5,,1", "0.5,", ",0.5", "0.5, ,1"):

@@ -27,4 +27,40 @@ Eigen::VectorXd unwrap_angles(const std::vector<std::vector<int>>& neighbours, c
 Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& w,
                                         int* jumps = nullptr);
 
+// Rotations blended relative to their neighbours', for poses that twist by a full turn or
+// more (where unwrap_rotation_vectors reports jumps; docs/maths.md section 6). Each element's
+// rotation is written as its spanning-tree parent's times a small relative rotation,
+// R_e = R_p Q_e (Q_e in the parent's own frame, so a rigid turn of the whole target leaves
+// it unchanged), and at time t
+//   R_root(t) = exp(t log R_root),   R_e(t) = R_p(t) exp(t log Q_e).
+// Neighbours along the tree then turn together however far the poses twist, and t = 0 and
+// t = 1 give I and R_e exactly. A pure twist or bend about one axis (commuting rotations)
+// gives exp(t w_e) as the logarithms do. The tree is a breadth-first one from the least
+// turned element of each connected part, whose own rotation is blended the short way: the
+// whole blend turns the short way where the poses turn least.
+class TreeRotationBlend {
+ public:
+  TreeRotationBlend() = default;
+  // rotations: #E of them; neighbours: element_neighbours.
+  TreeRotationBlend(const std::vector<std::vector<int>>& neighbours, const std::vector<Eigen::Matrix3d>& rotations);
+  // The #E rotations at time t.
+  std::vector<Eigen::Matrix3d> at(double t) const;
+  bool empty() const { return order_.empty(); }
+
+ private:
+  std::vector<int> order_, parent_;  // root first in each part; parent -1 at a root
+  Eigen::MatrixXd logs_;             // #E by 3: log R_e at a root, log Q_e elsewhere
+};
+
+// How far blended rotations are from turning together: the pairs of neighbours e, f whose
+// blended rotations at time t differ by more than `angle` (radians) from the relative rotation
+// between them blended too, R_f(t) against R_e(t) exp(t log(R_e^T R_f)). rotations: the #E
+// rotations at t = 1; blended: at t. 0 for commuting rotations (a twist or bend about one
+// axis) however far they turn; not 0 where neighbours turn by about 180 degrees relative to
+// each other (the direction of their relative turn is then ambiguous), where the blend
+// jumps, or where the rotations wind around a loop of elements.
+int count_disagreeing_neighbours(const std::vector<std::vector<int>>& neighbours,
+                                 const std::vector<Eigen::Matrix3d>& rotations,
+                                 const std::vector<Eigen::Matrix3d>& blended, double t, double angle);
+
 }  // namespace strictmin
