@@ -212,7 +212,7 @@ void add_interp_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(at_least(0));
   cmd->add_option("--lg-tolerance", args->lg_tolerance,
-                  "Stop when the maximum changes by less than this (relative)")
+                  "Stop when the maximum (l2: its energy) changes by less than this (relative)")
       ->capture_default_str()
       ->check(at_least(0));
   add_local_global_step_options(*cmd, args->lg_steps);

@@ -112,7 +112,7 @@ void add_local_global_options(CLI::App& cmd, LocalGlobalArgs& a) {
       ->capture_default_str()
       ->check(at_least(1)));
   a.options.push_back(cmd.add_option("--lg-tolerance", a.lg_tolerance,
-                  "arap/asap: stop when the maximum changes by less than this (relative, >= 0)")
+                  "arap/asap: stop when the maximum (l2: its energy) changes by less than this (relative, >= 0)")
       ->capture_default_str()
       ->check(at_least(0)));
   add_local_global_step_options(cmd, a);

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "strictmin/io/input_error.h"
+#include "strictmin/mesh/validate.h"
 #include "text_parse.h"
 
 namespace strictmin {
@@ -38,6 +39,10 @@ class HandleCollector {
       if (!std::isfinite(position(k)))
         fail("handle for vertex " + std::to_string(vertex) + " has a non-finite coordinate (" +
              io_detail::number_text(position(k)) + ")");
+      else if (std::abs(position(k)) > kLargestSize)  // as the library refuses it, with the line
+        fail("handle for vertex " + std::to_string(vertex) + " has the coordinate " +
+             io_detail::number_text(position(k)) + ", beyond 1e150 (strictmin takes sizes up to 1e150: scale the mesh "
+             "and the targets)");
     const auto [it, inserted] = seen_.try_emplace(static_cast<int>(vertex), handles_.size(), where);
     if (!inserted) {
       if (handles_[it->second.first].position == position) return;  // same target twice: merged

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <vector>
 
 #include "strictmin/io/input_error.h"
 #include "strictmin/mesh/validate.h"
@@ -11,6 +12,22 @@
 #include "problem/frame_axes.h"
 
 namespace strictmin {
+namespace {
+
+// Whether `b` lists the vertices of `a` (distinct) in an even permutation of a's order: for
+// a triangle, the same cyclic order from another corner.
+bool same_orientation(const Eigen::RowVectorXi& a, const Eigen::RowVectorXi& b) {
+  std::vector<int> position(a.size());
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    for (Eigen::Index j = 0; j < b.size(); ++j)
+      if (b(j) == a(i)) position[i] = static_cast<int>(j);
+  int inversions = 0;
+  for (size_t i = 0; i < position.size(); ++i)
+    for (size_t j = i + 1; j < position.size(); ++j) inversions += position[i] > position[j] ? 1 : 0;
+  return inversions % 2 == 0;
+}
+
+}  // namespace
 
 Eigen::MatrixXd corner_images(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X) {
   for (Eigen::Index e = 0; e < F.rows(); ++e)
@@ -87,8 +104,10 @@ MapDistortion map_distortion(const Mesh& rest, const Mesh& mapped, Measure measu
         Eigen::VectorXi a = rest.F.row(e).transpose(), b = mapped.F.row(e).transpose();
         std::sort(a.data(), a.data() + a.size());
         std::sort(b.data(), b.data() + b.size());
-        const std::string what = a == b ? " has its vertices in another order (another orientation) in "
-                                        : " has different vertices in ";
+        const std::string what = a != b ? " has different vertices in "
+                                 : same_orientation(rest.F.row(e), mapped.F.row(e))
+                                     ? " lists its vertices from another corner (the same orientation) in "
+                                     : " has its vertices in the reverse order (another orientation) in ";
         throw InputError("element " + std::to_string(e) + " (0-based)" + what + rest_name + " and " + mapped_name +
                          ": a map needs the same connectivity, element by element and corner by corner");
       }

@@ -239,7 +239,8 @@ class Deform(unittest.TestCase):
         mesh = write(os.path.join(self.dir, "tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
         handles = write(os.path.join(self.dir, "far.txt"), "0 1e200 0\n1 1 0\n")
         p = run("deform", mesh, "--handles", handles, check_code=1)
-        self.assertIn("the handle of vertex 0 has the coordinate 1e+200, beyond 1e150", p.stderr)
+        # named with its file and line, as the handle files' other errors are
+        self.assertIn("far.txt: line 1: handle for vertex 0 has the coordinate 1e+200, beyond 1e150", p.stderr)
 
     def test_unknown_output_format_is_refused_before_the_solve(self):
         p = run("deform", "--example", "square", "-o", os.path.join(self.dir, "x.stl"), check_code=1)

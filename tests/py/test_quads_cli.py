@@ -252,7 +252,12 @@ class Quads(CubeCase):
         rev = self.write("rev.obj", "\n".join(
             "f " + " ".join(reversed(l.split()[1:])) if l.startswith("f ") else l for l in cube_lines))
         p = run("eval", self.cube, rev, check_code=1)
-        self.assertIn("element 0 (0-based) has its vertices in another order (another orientation)", p.stderr)
+        self.assertIn("element 0 (0-based) has its vertices in the reverse order (another orientation)", p.stderr)
+        # The same triangle from another corner is told apart from a reversed one.
+        rot = self.write("rot.obj", "\n".join(
+            "f " + " ".join(l.split()[2:] + l.split()[1:2]) if l.startswith("f ") else l for l in cube_lines))
+        p = run("eval", self.cube, rot, check_code=1)
+        self.assertIn("element 0 (0-based) lists its vertices from another corner (the same orientation)", p.stderr)
 
     def test_a_collapsed_map_is_incomplete_without_holes(self):
         # Every vt the same integer point: seamless and on the grid, every triangle of zero UV
