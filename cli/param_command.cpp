@@ -91,6 +91,7 @@ int run_param(ParamArgs a) {
 
   const ParamOutcome p = parametrize(mesh, options, a.mesh);
   if (!p.result.ok()) progress(a.out, "warning: " + status_name(p.result.status) + ": " + p.result.message);
+  for (const std::string& w : p.warnings) progress(a.out, "param: warning: " + w);
   const std::string written = write_map(a.output, p.mapped, p.result.status);
   nlohmann::json s = param_summary(mesh, options, p, {a.mesh, written, a.out.distortion});
   s["time_s"] = seconds_since(t0);

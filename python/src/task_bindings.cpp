@@ -157,6 +157,7 @@ py::dict param_py(const RowMatrixXd& V, const RowMatrixXi& F, const std::string&
   out["flips"] = p->flips;
   out["boundary"] = p->boundary;
   out["boundary_overlap"] = p->boundary_overlap;
+  out["warnings"] = p->warnings;
   out["initial"] = RowMatrixXd(p->initial);
   return out;
 }

@@ -257,7 +257,8 @@ def param(V, F, method="linf", measure="arap", init=None, *, progress=None, verb
     boundary (method: tutte, lscm, l2, linf, relax, direct, lp, irls; measure: arap, asap,
     fd; init: tutte (None: the default) or lscm, the starting map; method tutte or lscm is
     that map itself, and an init naming the other one is a ValueError). relax starts from
-    ``relax_init`` (l2, lp, irls, linf; default linf). Returns a Result with ``uv``."""
+    ``relax_init`` (l2, lp, irls, linf; default linf). Returns a Result with ``uv`` and
+    ``warnings`` (flipped triangles, a boundary that crosses itself)."""
     V = _vertices(V)
     F = _faces(F)
     if init is not None:

@@ -136,6 +136,7 @@ nlohmann::json param_summary(const Mesh& mesh, const ParamOptions& options, cons
   s["flips_added"] = p.flips_added;
   s["no_flips"] = options.no_flips;
   s["boundary_overlap"] = p.boundary_overlap;
+  s["warnings"] = p.warnings;
   add_status_summary(s, p.result);
   if (!options.init_only) {
     add_solver_summary(s, options.solver, p.result);

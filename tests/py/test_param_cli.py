@@ -60,6 +60,7 @@ class Param(unittest.TestCase):
         self.assertEqual((s["task"], s["method"], s["measure"], s["init"]), ("param", "linf", "arap", "tutte"))
         self.assertEqual(s["flips"], 0)
         self.assertFalse(s["boundary_overlap"])
+        self.assertEqual(s["warnings"], [])
         self.assertIn("lower_bound", s)
         with open(out) as f:
             text = f.read().splitlines()
@@ -71,6 +72,22 @@ class Param(unittest.TestCase):
         # eval measures the written map the same way.
         e = run("eval", self.cap, out, "--measure", "arap", "--summary", "-", "--quiet", check_code=0)
         self.assertAlmostEqual(json.loads(e.stdout)["max_distortion"], s["max_distortion"], places=5)
+
+    def test_a_folded_map_is_warned_about(self):
+        # A cap reaching almost round the sphere (polar angle 3.0): its flattenings fold (l2 96
+        # and linf 144 of 360 triangles flipped), each "solved" by its method's criterion. The
+        # warning says what the status does not; --no-flips gives a map without.
+        cap = self.path("deep.obj", cap_obj(8, 24, 3.0))
+        p = run("param", cap, "--method", "l2", "--summary", "-", check_code=0)
+        s = json.loads(p.stdout)
+        self.assertGreater(s["flips"], 0)
+        self.assertEqual(len(s["warnings"]), 1)
+        self.assertIn(f"{s['flips']} of 360 triangles are flipped", s["warnings"][0])
+        self.assertIn("--no-flips keeps every triangle's orientation", s["warnings"][0])
+        self.assertIn("param: warning: " + s["warnings"][0], p.stderr)
+        s = json.loads(run("param", cap, "--method", "linf", "--no-flips", "--summary", "-", "--quiet",
+                           check_code=0).stdout)
+        self.assertEqual((s["flips"], s["warnings"]), (0, []))
 
     def test_init_methods_and_lscm_start(self):
         for method in ("tutte", "lscm"):

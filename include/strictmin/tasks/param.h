@@ -45,6 +45,7 @@ struct ParamOutcome {
   int flips = 0;               // triangles against the majority orientation
   int flips_added = 0;         // triangles with det J <= 0 in the map and > 0 in the initial map
   bool boundary_overlap = false;
+  std::vector<std::string> warnings;  // what the status does not say: flipped triangles, an overlapping boundary
   ConformalStats conformal;    // qc / iso: bisection steps, frame iterations
 };
 
