@@ -165,6 +165,28 @@ void check_summary_figures(const nlohmann::json& s, const std::string& file, con
                      shown_number(values.minCoeff(), 10) + " (a distortion file of another measure?)");
 }
 
+// The summary's words that name what it is: a task this report shows (interp's frames are
+// refused later with their own message) and a status the tools write. Others were taken
+// without a word ("task": "banana" exit 0).
+void check_summary_words(const nlohmann::json& s, const std::string& file) {
+  if (s.contains("task")) {
+    const std::string task = s["task"].is_string() ? s["task"].get<std::string>() : std::string();
+    static const std::set<std::string> tasks{"deform", "param", "gparam", "eval", "interp", "quads"};
+    if (!tasks.count(task))
+      throw InputError(file + ": unknown task " + s["task"].dump() + " (report shows the summaries of deform, param, "
+                              "gparam and eval)");
+  }
+  if (s.contains("status")) {
+    const std::string status = s["status"].is_string() ? s["status"].get<std::string>() : std::string();
+    bool known = false;
+    for (SolveStatus x : {SolveStatus::Solved, SolveStatus::AlmostSolved, SolveStatus::MaxIterations,
+                          SolveStatus::Stalled, SolveStatus::NumericalError, SolveStatus::Infeasible})
+      known = known || status == status_name(x);
+    if (!known)
+      throw InputError(file + ": unknown status " + s["status"].dump() + " (docs/formats.md, \"Statuses\")");
+  }
+}
+
 // The summary's counts against the map's.
 void check_summary_counts(const nlohmann::json& s, const std::string& file, const std::string& mapped_path,
                           int elements) {
@@ -233,6 +255,7 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   auto number = [&](const char* key) {
     return s.contains(key) && s[key].is_number() ? s[key].get<double>() : std::nan("");
   };
+  check_summary_words(s, file);
   r.file = file;
   r.input = text("input");
   r.location = input_location(r.input, file);
@@ -263,11 +286,10 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   for (const auto& w : warnings) progress(out, "warning: " + w);
   const int elements = r.run.mapped.num_elements();
   check_summary_counts(s, file, mapped_path, elements);
-  if (r.rest && r.rest->num_elements() != elements) {
-    progress(out, "warning: " + file + ": the input has " + std::to_string(r.rest->num_elements()) +
-                      " elements and the output " + std::to_string(elements) + "; the input is not shown");
-    r.rest.reset();
-  }
+  if (r.rest && r.rest->num_elements() != elements)  // not one map's rest and image (it was filed under the input's section)
+    throw InputError(file + ": its input '" + r.input + "' has " + std::to_string(r.rest->num_elements()) +
+                     " elements and its output '" + mapped_path + "' " + std::to_string(elements) +
+                     ": they are not one map's rest and image (an edited summary, or a file replaced since the run?)");
   if (r.rest) check_summary_flips(s, file, *r.rest, r.run.mapped, r.input, mapped_path);
 
   const std::string measure_text = text("measure").empty() ? "fd" : text("measure");

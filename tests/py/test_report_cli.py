@@ -253,7 +253,13 @@ class Report(unittest.TestCase):
                                    # a count the map does not have (was shown as "7 of 800")
                                    ("flipped", 7, "flipped 7 disagrees with sq.obj, which has 0 flipped elements"),
                                    ("max_distortion", 0.5, "max_distortion 0.5 disagrees with sq.txt"),
-                                   ("measure", "qc", "a qc distortion is at least 1")):
+                                   ("measure", "qc", "a qc distortion is at least 1"),
+                                   # words no tool writes (taken without a word, exit 0 and 2)
+                                   ("task", "banana", 'unknown task "banana"'),
+                                   ("status", "weird", 'unknown status "weird"'),
+                                   # another map's input (it was filed under the input's section,
+                                   # with the warning "input mesh not found")
+                                   ("input", "example:bar", "they are not one map's rest and image")):
             edited = dict(summary, **{key: value})
             with open(os.path.join(self.dir, "e.json"), "w") as f:
                 json.dump(edited, f)
