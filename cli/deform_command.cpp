@@ -37,6 +37,7 @@ int run_deform(const DeformArgs& a) {
   options.measure = *measure;
   refuse_local_global_flags(a.lg, options.measure);
   refuse_frame_iterations(a.solver, options.measure, "deform");
+  refuse_other_methods_flags(a.solver);
   if (a.start != "l2" && a.start != "rest") throw InputError("unknown --start '" + a.start + "' (use l2 or rest)");
   // The start of local-global; fd, qc and iso start from the rest pose and the L2 map whatever
   // --start said.

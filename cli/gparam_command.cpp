@@ -47,6 +47,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   o.measure = *measure;
   refuse_local_global_flags(a.lg_steps, o.measure);
   refuse_frame_iterations(a.solver, o.measure, "gparam");
+  refuse_other_methods_flags(a.solver);
   if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");
   if (a.edge_length_given && !(a.edge_length > 0 && std::isfinite(a.edge_length)))
     throw InputError("--edge-length must be a positive finite number, got " + shown_number(a.edge_length));

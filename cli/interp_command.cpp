@@ -105,6 +105,7 @@ int run_interp(const InterpArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto threads = limit_threads(a.out.threads);
   refuse_frame_iterations(a.solver, std::nullopt, "interp");
+  refuse_other_methods_flags(a.solver);
   InterpOptions options;
   options.solver = make_solver_options(a.solver, a.out);
   options.local_global.max_iterations = a.lg_iterations;

@@ -63,6 +63,7 @@ int run_param(ParamArgs a) {
   options.measure = *measure;
   refuse_local_global_flags(a.lg, options.measure);
   refuse_frame_iterations(a.solver, options.measure, "param");
+  refuse_other_methods_flags(a.solver);
   check_init_agrees_with_start_method(a.solver.method, a.solver.init);
   // --init names the starting map (tutte, lscm); a method name there is relax's start.
   if (a.solver.init == "tutte" || a.solver.init == "lscm") {

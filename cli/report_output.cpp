@@ -13,7 +13,7 @@
 namespace strictmin::cli {
 
 void add_report_options(CLI::App& cmd, ReportArgs& a) {
-  cmd.add_option("--report", a.dir,
+  CLI::Option* report = cmd.add_option("--report", a.dir,
                  "Write a report to folder DIR: summary.json, a colour-coded view, histogram.svg and index.html "
                  "(open it in a browser)")
       ->type_name("DIR");
@@ -21,7 +21,8 @@ void add_report_options(CLI::App& cmd, ReportArgs& a) {
                  "Report: the distortion shown red (dark blue is 0); 0: automatic, 1.5 times the least maximum "
                  "rounded up to 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten")
       ->capture_default_str()
-      ->check(at_least(0));
+      ->check(at_least(0))
+      ->needs(report);  // alone it would be ignored
 }
 
 namespace {

@@ -18,65 +18,65 @@ void add_solver_options(CLI::App& cmd, SolverArgs& a) {
   g->add_option("--max-iterations", a.max_iterations, "linf: interior-point iteration cap (>= 1)")
       ->capture_default_str()
       ->check(at_least(1));
-  g->add_flag("--linf-min-l2", a.linf_min_l2,
-              "linf: among the L-infinity optima, return the one with the least L2 distortion (a second solve)");
-  g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(at_least(2));
-  g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves (>= 1)")
+  a.method_specific.push_back({g->add_flag("--linf-min-l2", a.linf_min_l2,
+              "linf: among the L-infinity optima, return the one with the least L2 distortion (a second solve)"), "linf_min_l2"});
+  a.method_specific.push_back({g->add_option("--p", a.p, "lp: the exponent p (>= 2)")->capture_default_str()->check(at_least(2)), "p"});
+  a.method_specific.push_back({g->add_option("--irls-iterations", a.irls_iterations, "irls: number of reweighted solves (>= 1)")
       ->capture_default_str()
-      ->check(at_least(1));
-  g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices (>= 0)")
+      ->check(at_least(1)), "irls_iterations"});
+  a.method_specific.push_back({g->add_option("--sweeps", a.sweeps, "relax: number of sweeps over the vertices (>= 0)")
       ->capture_default_str()
-      ->check(at_least(0));
-  g->add_option("--move-tolerance", a.move_tolerance,
+      ->check(at_least(0)), "sweeps"});
+  a.method_specific.push_back({g->add_option("--move-tolerance", a.move_tolerance,
                 "relax: stop when no vertex moves more than this (>= 0; 0: run every sweep)")
       ->capture_default_str()
-      ->check(at_least(0));
-  g->add_option("--accept-tolerance", a.accept_tolerance,
+      ->check(at_least(0)), "move_tolerance"});
+  a.method_specific.push_back({g->add_option("--accept-tolerance", a.accept_tolerance,
                 "relax: a move must improve its ring in the strict order with values within this fraction of "
                 "the ring maximum counted as equal (0: any decrease of the ring maximum)")
       ->capture_default_str()
-      ->check(half_open_range(0, 1));
+      ->check(half_open_range(0, 1)), "accept_tolerance"});
   g->add_option("--init", a.init, "relax: start from l2, lp, irls or linf")->capture_default_str();
-  g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum (> 0)")
+  a.method_specific.push_back({g->add_option("--delta-k", a.delta_k, "direct: fix elements within this of each level's optimum (> 0)")
       ->capture_default_str()
-      ->check(greater_than(0));
-  g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this (>= 0)")
+      ->check(greater_than(0)), "delta_k"});
+  a.method_specific.push_back({g->add_option("--k-min", a.k_min, "direct: stop when the level falls below this (>= 0)")
       ->capture_default_str()
-      ->check(at_least(0));
-  g->add_option("--level-gap", a.level_gap,
+      ->check(at_least(0)), "k_min"});
+  a.method_specific.push_back({g->add_option("--level-gap", a.level_gap,
                 "direct: relative gap at which the levels after the first stop (negative, the default -1: delta-k / 100; the "
                 "first level uses --gap; below 1)")
       ->capture_default_str()
-      ->check(less_than(1));
-  g->add_option("--max-levels", a.max_levels,
+      ->check(less_than(1)), "level_gap"});
+  a.method_specific.push_back({g->add_option("--max-levels", a.max_levels,
                 "direct: stop after this many levels (status max-iterations if elements are still free above "
                 "k-min; >= 1)")
       ->capture_default_str()
-      ->check(at_least(1));
-  g->add_flag("--no-pin", a.no_pin,
+      ->check(at_least(1)), "max_levels"});
+  a.method_specific.push_back({g->add_flag("--no-pin", a.no_pin,
              "direct/exact: keep essential elements as cones at their bounds instead of pinning their Jacobians "
-             "(the behaviour before pinning; the later levels then depend on the bounds' slack)");
-  g->add_flag("--level-cold-start", a.level_cold_start,
+             "(the behaviour before pinning; the later levels then depend on the bounds' slack)"), "pin_essential"});
+  a.method_specific.push_back({g->add_flag("--level-cold-start", a.level_cold_start,
               "direct: start every level's interior-point method afresh (default: from the previous level's dual, "
-              "element by element)");
-  g->add_option("--pin-threshold", a.pin_threshold,
+              "element by element)"), "warm_levels"});
+  a.method_specific.push_back({g->add_option("--pin-threshold", a.pin_threshold,
                 "direct: pin an element when its certificate multiplier is at least this (multipliers sum to 1; "
                 "in (0, 1])")
       ->capture_default_str()
       ->check(greater_than(0))
-      ->check(CLI::Range(0.0, 1.0));
-  g->add_option("--moving-rings", a.moving_rings,
+      ->check(CLI::Range(0.0, 1.0)), "pin_threshold"});
+  a.method_specific.push_back({g->add_option("--moving-rings", a.moving_rings,
                 "direct: levels after the first move only the vertices within this many rings of the elements "
                 "still free, the rest stays (0: every vertex at every level, the paper's Algorithm 2 as stated)")
       ->capture_default_str()
-      ->check(at_least(0));
+      ->check(at_least(0)), "moving_rings"});
   a.frame_iterations_option = g->add_option("--frame-iterations", a.frame_iterations,
                 "qc/iso: cap on frame iterations (each a level program or bisection for the current frames; >= 1)")
       ->capture_default_str()
       ->check(at_least(1));
-  g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this (>= 1)")
+  a.method_specific.push_back({g->add_option("--exact-max-elements", a.exact_max_elements, "exact: refuse meshes larger than this (>= 1)")
       ->capture_default_str()
-      ->check(at_least(1));
+      ->check(at_least(1)), "exact_max_elements"});
 }
 
 void refuse_frame_iterations(const SolverArgs& a, const std::optional<Measure>& measure, const std::string& task) {
@@ -141,6 +141,20 @@ void refuse_local_global_flags(const LocalGlobalArgs& a, Measure measure) {
     if (given(option))
       throw InputError(option->get_name() + " applies to --measure arap or asap (their local-global iterations), not " +
                        measure_name(measure) + ", which takes no local steps");
+}
+
+void refuse_other_methods_flags(const SolverArgs& a) {
+  const auto parsed = parse_method(a.method), init = parse_method(a.init);
+  const bool starting_map = a.method == "tutte" || a.method == "lscm";  // param's: they read none of these
+  if (!parsed && !starting_map) return;  // an unknown method: said by make_solver_options
+  const Method method = parsed ? *parsed : Method::L2;  // l2 reads none of them either
+  for (const auto& [option, key] : a.method_specific) {
+    if (!given(option)) continue;
+    const std::string readers = option_not_read(key, method, init ? *init : Method::Linf);
+    if (!readers.empty())
+      throw InputError(option->get_name() + " applies to --method " + readers + "; --method " + a.method +
+                       " does not read it");
+  }
 }
 
 SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out, const std::string& extra_names) {

@@ -40,6 +40,8 @@ struct SolverArgs {
   // qc, iso
   int frame_iterations = 50;
   const CLI::Option* frame_iterations_option = nullptr;  // set by add_solver_options
+  // One method's own flags and their keys for option_not_read (set by add_solver_options).
+  std::vector<std::pair<const CLI::Option*, std::string>> method_specific;
 };
 
 void add_solver_options(CLI::App& cmd, SolverArgs& args);
@@ -47,6 +49,9 @@ void add_solver_options(CLI::App& cmd, SolverArgs& args);
 // (a measure other than qc or iso; no measure: a task without them, named `task`): it
 // would be ignored.
 void refuse_frame_iterations(const SolverArgs& args, const std::optional<Measure>& measure, const std::string& task);
+// Throws InputError when a flag of one method (--p, --sweeps, --delta-k, ...) was given with
+// another --method, which would ignore it. relax also reads the flags of its --init method.
+void refuse_other_methods_flags(const SolverArgs& args);
 
 // arap / asap local-global flags of deform and param, and --no-flips.
 struct LocalGlobalArgs {

@@ -460,7 +460,8 @@ TEST(SurfaceDeformation, CommandLineRelaxOnHomer) {
   const auto run = [&](const std::string& method, const std::string& extra) {
     const std::string cmd = std::string(STRICTMIN_CLI) + " deform " + file.string() + " --handles " +
                             (dir / "handles.txt").string() + " --measure arap --method " + method +
-                            " --lg-iterations 4 --sweeps 20 -q -o " + (dir / (method + ".obj")).string() +
+                            " --lg-iterations 4" + (method == "relax" ? " --sweeps 20" : "") + " -q -o " +
+                            (dir / (method + ".obj")).string() +
                             " --distortion " + (dir / (method + ".txt")).string() + " --summary " +
                             (dir / (method + ".json")).string() + extra + " 2>" + (dir / (method + ".err")).string();
     const int code = std::system(cmd.c_str());

@@ -168,6 +168,14 @@ TaskOptions parse_options(Task task, const std::string& function, const std::str
     throw InputError("init names the starting map (tutte or lscm) when relax_init is given, not '" + o.init + "'");
   o.solver.relax_init = *init;
   if (o.start != "l2" && o.start != "rest") throw InputError("unknown start '" + o.start + "' (use l2 or rest)");
+  // A method's own keyword given with another method would be ignored (as the command line
+  // refuses its flag).
+  for (const auto& item : options) {
+    const std::string key = py::str(item.first);
+    const std::string readers = option_not_read(key, o.solver.method, o.solver.relax_init);
+    if (!readers.empty())
+      throw InputError(key + " applies to method " + readers + "; method '" + method + "' does not read it");
+  }
   return o;
 }
 

@@ -1,5 +1,9 @@
 #include "strictmin/tasks/method.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
 #include "../solvers/option_check.h"
@@ -35,6 +39,30 @@ std::string method_list() {
   std::string out;
   for (Method m : kMethods) out += (out.empty() ? "" : ", ") + method_name(m);
   return out;
+}
+
+std::string option_not_read(const std::string& key, Method method, Method relax_init) {
+  static const std::vector<std::pair<std::vector<std::string>, std::vector<Method>>> owners{
+      {{"linf_min_l2"}, {Method::Linf}},
+      {{"p"}, {Method::Lp}},
+      {{"irls_iterations"}, {Method::Irls}},
+      {{"sweeps", "move_tolerance", "accept_tolerance"}, {Method::Relax}},
+      {{"delta_k", "k_min", "level_gap", "max_levels", "warm_levels", "pin_threshold", "moving_rings"}, {Method::Direct}},
+      {{"pin_essential"}, {Method::Direct, Method::Exact}},
+      {{"exact_max_elements"}, {Method::Exact}},
+  };
+  for (const auto& [keys, methods] : owners) {
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;
+    const auto reads = [&](Method m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+    if (reads(method) || (method == Method::Relax && reads(relax_init))) return "";
+    std::string phrase;
+    for (size_t i = 0; i < methods.size(); ++i) phrase += (i ? " or " : "") + method_name(methods[i]);
+    const bool a_start = methods.size() == 1 && (methods[0] == Method::L2 || methods[0] == Method::Linf ||
+                                                 methods[0] == Method::Lp || methods[0] == Method::Irls);
+    if (a_start) phrase += " (or relax starting from " + method_name(methods[0]) + ")";
+    return phrase;
+  }
+  return "";
 }
 
 bool SolverOptions::is_valid(std::string* why) const {

@@ -242,6 +242,21 @@ class Deform(unittest.TestCase):
         # named with its file and line, as the handle files' other errors are
         self.assertIn("far.txt: line 1: handle for vertex 0 has the coordinate 1e+200, beyond 1e150", p.stderr)
 
+    def test_flags_of_another_method_are_refused(self):
+        # They were ignored without a word (--frame-iterations and --start were already refused).
+        for args, needle in ((["--method", "linf", "--sweeps", "3"], "--sweeps applies to --method relax; --method linf"),
+                             (["--method", "l2", "--linf-min-l2"], "--linf-min-l2 applies to --method linf"),
+                             (["--method", "linf", "--p", "8"], "--p applies to --method lp (or relax starting from lp)"),
+                             (["--method", "relax", "--delta-k", "0.01"], "--delta-k applies to --method direct"),
+                             (["--method", "l2", "--no-pin"], "--no-pin applies to --method direct or exact"),
+                             (["--report-scale", "2"], "--report-scale requires --report")):
+            p = run("deform", "--example", "square", *args, "--summary", os.path.join(self.dir, "s.json"), check_code=1)
+            self.assertIn(needle, p.stderr, args)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "s.json")), args)
+        # relax reads the flags of the method it starts from.
+        run("deform", "--example", "square", "--method", "relax", "--init", "lp", "--p", "8", "--sweeps", "1",
+            "--quiet", check_code=0)
+
     def test_unknown_output_format_is_refused_before_the_solve(self):
         p = run("deform", "--example", "square", "-o", os.path.join(self.dir, "x.stl"), check_code=1)
         self.assertIn("unknown mesh format '.stl'", p.stderr)

@@ -185,6 +185,11 @@ def test_tasks(square):
         strictmin.param(surface, F, measure="qc", method="relax")
     with pytest.raises(ValueError, match="outside \\[0, 1\\]"):
         strictmin.interp(V, F, V * 2, 1.5)
+    # A method's own keyword with another method would be ignored: refused, as on the command line.
+    with pytest.raises(ValueError, match="sweeps applies to method relax; method 'linf' does not read it"):
+        strictmin.deform(V, F, idx, pos, method="linf", sweeps=3)
+    with pytest.raises(ValueError, match="p applies to method lp \\(or relax starting from lp\\)"):
+        strictmin.param(surface, F, method="l2", p=8)
     # Shown as given (it read "t: -0.000000 is outside [0, 1]").
     with pytest.raises(ValueError, match="t: -1e-09 is outside"):
         strictmin.interp(V, F, V * 2, -1e-9)

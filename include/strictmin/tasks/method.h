@@ -19,6 +19,13 @@ std::string method_name(Method m);  // "l2", "linf", "lp", "irls", "relax", "dir
 std::optional<Method> parse_method(const std::string& name);
 std::string method_list();  // for help and error messages
 
+// A method's own option, which the other methods ignore: empty when `key` (the Python keyword
+// spelling: "p", "sweeps", "delta_k", "pin_essential", ...) is read by every method or is no
+// method's own. Otherwise, "" when `method` reads it (relax also reads the options of the
+// method it starts from, relax_init), else a phrase naming the methods that do, "lp (or
+// relax starting from lp)", for the message refusing it.
+std::string option_not_read(const std::string& key, Method method, Method relax_init);
+
 struct SolverOptions {
   Method method = Method::L2;
   LinfOptions linf;
