@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <numeric>
 #include <queue>
 #include <utility>
 
@@ -15,13 +16,18 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// Visits every element in BFS order, calling fix(element, parent) (parent -1 for the first
-// element of each connected part).
-void breadth_first(const std::vector<std::vector<int>>& neighbours, const std::function<void(int, int)>& fix) {
+// Visits every element in BFS order, calling fix(element, parent) (parent -1 for the root
+// of each connected part: its first element in `root_order`, by default 0, 1, 2, ...).
+void breadth_first(const std::vector<std::vector<int>>& neighbours, const std::function<void(int, int)>& fix,
+                   std::vector<int> root_order = {}) {
   const int E = static_cast<int>(neighbours.size());
+  if (root_order.empty()) {
+    root_order.resize(E);
+    std::iota(root_order.begin(), root_order.end(), 0);
+  }
   std::vector<char> seen(E, 0);
   std::queue<int> queue;
-  for (int root = 0; root < E; ++root) {
+  for (int root : root_order) {
     if (seen[root]) continue;
     seen[root] = 1;
     fix(root, -1);
@@ -104,44 +110,25 @@ Eigen::MatrixXd unwrap_rotation_vectors(const std::vector<std::vector<int>>& nei
   return out;
 }
 
-
 TreeRotationBlend::TreeRotationBlend(const std::vector<std::vector<int>>& neighbours,
                                      const std::vector<Eigen::Matrix3d>& rotations) {
   const int E = static_cast<int>(neighbours.size());
   parent_.assign(E, -1);
   order_.reserve(E);
-  // Each part's root: its least turned element (its own rotation blended the short way).
-  std::vector<int> part(E, -1), roots;
-  for (int first = 0; first < E; ++first) {
-    if (part[first] >= 0) continue;
-    part[first] = static_cast<int>(roots.size());
-    std::vector<int> stack{first};
-    int least = first;
-    while (!stack.empty()) {
-      const int e = stack.back();
-      stack.pop_back();
-      if (rotation_log(rotations[e]).norm() < rotation_log(rotations[least]).norm()) least = e;
-      for (int f : neighbours[e])
-        if (part[f] < 0) {
-          part[f] = part[first];
-          stack.push_back(f);
-        }
-    }
-    roots.push_back(least);
-  }
-  std::vector<char> seen(E, 0);
-  for (int root : roots) {
-    seen[root] = 1;
-    const size_t begin = order_.size();
-    order_.push_back(root);
-    for (size_t i = begin; i < order_.size(); ++i)
-      for (int f : neighbours[order_[i]])
-        if (!seen[f]) {
-          seen[f] = 1;
-          parent_[f] = order_[i];
-          order_.push_back(f);
-        }
-  }
+  // Each part's root: its least turned element (its own rotation blended the short way), the
+  // first of its part in the order of increasing angle.
+  std::vector<double> angle(E);
+  for (int e = 0; e < E; ++e) angle[e] = rotation_log(rotations[e]).norm();
+  std::vector<int> by_angle(E);
+  std::iota(by_angle.begin(), by_angle.end(), 0);
+  std::stable_sort(by_angle.begin(), by_angle.end(), [&](int a, int b) { return angle[a] < angle[b]; });
+  breadth_first(
+      neighbours,
+      [&](int e, int parent) {
+        parent_[e] = parent;
+        order_.push_back(e);
+      },
+      by_angle);
   logs_.resize(E, 3);
   for (int e : order_) {
     const Eigen::Matrix3d relative = parent_[e] < 0 ? rotations[e] : Eigen::Matrix3d(rotations[parent_[e]].transpose() * rotations[e]);
@@ -157,10 +144,6 @@ std::vector<Eigen::Matrix3d> TreeRotationBlend::at(double t) const {
   }
   return out;
 }
-
-}  // namespace strictmin
-
-namespace strictmin {
 
 int count_disagreeing_neighbours(const std::vector<std::vector<int>>& neighbours,
                                  const std::vector<Eigen::Matrix3d>& rotations,
