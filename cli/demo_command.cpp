@@ -138,6 +138,7 @@ int run_demo(const DemoArgs& a) {
                                        static_cast<int>(example.handles.size())),
                     d.measured.distortion);
       MethodRun run = method_run(name, d, opt.measure);
+      run.order_tolerance = order_tolerance(opt.solver);
       run.links = {{"summary", ex.name + "/" + name + ".json"},
                    {"mesh", ex.name + "/" + mesh_file},
                    {"distortion", ex.name + "/" + dist_file}};

@@ -87,6 +87,7 @@ ReportSection write_section_of(const GParamDemo& demo, const std::string& dir, c
     write_outputs(files, gparam_summary(demo.surface, o, g, o.field_kind(), {demo.example, name + ".obj", name + ".txt"}),
                   g.measured.distortion);
     MethodRun run = method_run(name, g);
+    run.order_tolerance = order_tolerance(o.solver);
     run.links = {{"summary", demo.id + "/" + name + ".json"}, {"UV mesh", demo.id + "/" + name + ".obj"}};
     outcomes.push_back(g);
     all_solved = all_solved && g.result.ok();

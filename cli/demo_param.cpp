@@ -43,6 +43,7 @@ ReportSection write_param_demo_section(const std::string& dir, const ComparisonO
     write_outputs(files, param_summary(cap, o, p, {"example:spherical-cap", name + ".obj", name + ".txt"}),
                   p.measured.distortion);
     MethodRun run = method_run(name, p, o.measure);
+    run.order_tolerance = order_tolerance(o.solver);
     run.links = {{"summary", "param/" + name + ".json"}, {"UV mesh", "param/" + name + ".obj"}};
     all_solved = all_solved && p.result.ok();
     char line[200];

@@ -185,6 +185,10 @@ void check_summary_words(const nlohmann::json& s, const std::string& file) {
     if (!known)
       throw InputError(file + ": unknown status " + s["status"].dump() + " (docs/formats.md, \"Statuses\")");
   }
+  // The verdicts tie direct's values within it: a bad one would decide them.
+  if (s.contains("delta_k") && !(s["delta_k"].is_number() && s["delta_k"].get<double>() > 0 &&
+                                 s["delta_k"].get<double>() < 1))
+    throw InputError(file + ": delta_k " + s["delta_k"].dump() + " is not a number in (0, 1)");
 }
 
 // The summary's counts against the map's.
@@ -334,6 +338,9 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
   r.run.time_s = std::isfinite(number("solver_time_s")) ? number("solver_time_s") : number("time_s");
   r.run.status = text("status").empty() ? "solved" : text("status");
   r.run.message = text("message");
+  // direct is compared with the others at its delta-k (a summary from before the key: the
+  // default, 1e-3).
+  if (r.run.method == "direct") r.run.order_tolerance = std::isfinite(number("delta_k")) ? number("delta_k") : 1e-3;
   return r;
 }
 

@@ -66,6 +66,10 @@ MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure m
   return r;
 }
 
+double order_tolerance(const SolverOptions& options) {
+  return options.method == Method::Direct ? options.direct.delta_k : 0.0;
+}
+
 MethodRun method_run(const std::string& method, const InterpFrame& f) {
   MethodRun r;
   r.method = method;

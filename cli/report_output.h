@@ -29,6 +29,9 @@ MethodRun method_run(const std::string& method, const DeformOutcome& d, Measure 
 MethodRun method_run(const std::string& method, const ParamOutcome& p, Measure measure);
 MethodRun method_run(const std::string& method, const InterpFrame& f);
 
+// MethodRun::order_tolerance of a run made with these options: direct's delta-k, else 0.
+double order_tolerance(const SolverOptions& options);
+
 // The values a report shows for a measure: qc and iso (>= 1, 1 undistorted) as their excess
 // over 1, so that the colour scale starts at 1 (blue) like the others' at 0; the rest as is.
 Eigen::VectorXd report_values(Measure measure, const Eigen::VectorXd& distortion);

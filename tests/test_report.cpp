@@ -374,6 +374,40 @@ void touch(const fs::path& file) { std::ofstream(file) << "mine\n"; }
 
 }  // namespace
 
+// direct fixes each level's elements within delta-k of it, so the verdict ties its values
+// within delta-k: 1.4e-6 above L-infinity's maximum is the same level, decided by the area
+// (session 31's QA: bimba_1k was ranked below L-infinity at 1e-6).
+TEST(HtmlReport, VerdictsCompareDirectAtItsDeltaK) {
+  auto entry = [](const std::string& name, std::vector<double> d, double tolerance) {
+    MethodEntry m;
+    m.name = name;
+    m.distortion = Eigen::Map<Eigen::VectorXd>(d.data(), d.size());
+    m.weights = Eigen::VectorXd::Ones(d.size());
+    m.stats = distortion_stats(m.distortion, m.weights);
+    m.order_tolerance = tolerance;
+    return m;
+  };
+  auto verdict = [&](double direct_tolerance) {
+    ReportSection s;
+    s.title = "two maps";
+    s.methods.push_back(entry("linf", {0.9, 0.9, 0.9, 0.5}, 0));
+    s.methods.push_back(entry("direct", {0.9000014, 0.9, 0.5, 0.5}, direct_tolerance));
+    HtmlReport r;
+    r.sections.push_back(s);
+    const std::string html = index_html(r);
+    const auto at = html.find("is less distorting than");
+    EXPECT_NE(at, std::string::npos);
+    return html.substr(html.rfind("<li>", at), html.find("</li>", at) - html.rfind("<li>", at));
+  };
+  const std::string by_value = verdict(0);  // (a run without a tolerance: 1e-6)
+  EXPECT_NE(by_value.find("L\u221e (least maximum) is less distorting"), std::string::npos) << by_value;
+  EXPECT_EQ(by_value.find("delta-k"), std::string::npos) << by_value;
+  const std::string at_delta_k = verdict(1e-3);
+  EXPECT_NE(at_delta_k.find("strict minimizer (direct) is less distorting"), std::string::npos) << at_delta_k;
+  EXPECT_NE(at_delta_k.find("50% of the area against 75%"), std::string::npos) << at_delta_k;
+  EXPECT_NE(at_delta_k.find("values within 0.001, direct&#39;s delta-k, count as equal"), std::string::npos) << at_delta_k;
+}
+
 TEST(ReportManifest, ANewReportRemovesTheFilesOfTheOldOneItDoesNotWriteAgain) {
   TempDir tmp;
   const Mesh grid = make_grid(4, 4);

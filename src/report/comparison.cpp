@@ -188,6 +188,7 @@ ReportSection write_section(const std::string& report_dir, const SectionInput& i
     e.time_s = r.time_s;
     e.status = r.status;
     e.message = r.message;
+    e.order_tolerance = r.order_tolerance;
     e.distortion = r.distortion;
     e.weights = r.weights;
     e.links = r.links;

@@ -94,6 +94,16 @@ bool comparable(const MethodEntry& a, const MethodEntry& b) {
          a.weights.size() == a.distortion.size();
 }
 
+// The strict order of a against b, values closer than either run's own tolerance tied:
+// direct fixes each level's elements within delta-k of it, so finer differences say nothing.
+constexpr double kFinestOrderTolerance = 1e-6;
+double order_tolerance(const MethodEntry& a, const MethodEntry& b) {
+  return std::max({kFinestOrderTolerance, a.order_tolerance, b.order_tolerance});
+}
+StrictComparison strict_order(const MethodEntry& a, const MethodEntry& b) {
+  return compare_strict(a.distortion, b.distortion, a.weights, order_tolerance(a, b));
+}
+
 // The smallest finite maximum among the methods (the least maximum shown).
 double least_maximum(const ReportSection& s) {
   double k = std::numeric_limits<double>::infinity();
@@ -195,9 +205,12 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
   for (std::size_t i = 1; i < s.methods.size(); ++i) {
     const MethodEntry &a = s.methods[i - 1], &b = s.methods[i];
     if (!comparable(a, b)) continue;
-    const StrictComparison c = compare_strict(a.distortion, b.distortion, a.weights);
+    const StrictComparison c = strict_order(a, b);
     all_equivalent = all_equivalent && c.order == StrictOrder::Equivalent;
-    verdicts.push_back(verdict_text(c, shown_name(a), shown_name(b), a.weights.sum()));
+    std::string verdict = verdict_text(c, shown_name(a), shown_name(b), a.weights.sum());
+    if (order_tolerance(a, b) > kFinestOrderTolerance)
+      verdict += " (values within " + number(order_tolerance(a, b), 3) + ", direct's delta-k, count as equal)";
+    verdicts.push_back(verdict);
   }
   if (!verdicts.empty()) {
     h << "<h3>Strict order (paper, Section 4)</h3>\n<p class=\"caption\">Two maps compared from the top down: the "
@@ -217,8 +230,7 @@ void write_notes(std::ostream& h, const ReportSection& s, double kstar) {
           all_comparable = false;
           break;
         }
-        if (compare_strict(s.methods[i].distortion, s.methods[best].distortion, s.methods[i].weights).order ==
-            StrictOrder::Less)
+        if (strict_order(s.methods[i], s.methods[best]).order == StrictOrder::Less)
           best = i;
       }
       if (all_comparable && s.methods.size() > 2)

@@ -44,7 +44,11 @@ void add_solver_summary(nlohmann::json& s, const SolverOptions& o, const Result&
   if (o.method == Method::Direct || o.method == Method::Exact) s["levels"] = r.iterations;
   // Below delta-k / 4 every level's band of fixed elements is where Algorithm 2 puts it;
   // null when a level has no certified bound.
-  if (o.method == Method::Direct) s["worst_level_gap"] = number_or_null(worst_level_gap(r));
+  if (o.method == Method::Direct) {
+    s["worst_level_gap"] = number_or_null(worst_level_gap(r));
+    s["delta_k"] = o.direct.delta_k;  // report compares direct with the others at it
+    s["k_min"] = o.direct.k_min;
+  }
   if (o.method == Method::Relax) {
     s["sweeps"] = r.iterations;
     s["init"] = method_name(o.relax_init);

@@ -74,6 +74,21 @@ class Report(unittest.TestCase):
         for name in ("l2.svg", "linf.svg", "histogram.svg", "l2.json", "linf.json"):
             self.assertTrue(os.path.exists(os.path.join(out, "square", name)), name)
 
+    def test_direct_is_compared_at_its_delta_k(self):
+        # direct fixes each level's elements within delta-k of it (1e-3 here): on the square it
+        # has more triangles than L-infinity within 1e-5 of the maximum 0.3 and fewer within
+        # 1e-3. The verdict ties values at delta-k (it said L-infinity was less distorting).
+        for method in ("linf", "direct"):
+            run("deform", "--example", "square", "--method", method, "-o", f"{method}.obj", "--distortion",
+                f"{method}.txt", "--summary", f"{method}.json", "--quiet", cwd=self.dir)
+        s = json.loads(read(os.path.join(self.dir, "direct.json")))
+        self.assertEqual(s["delta_k"], 1e-3)
+        self.assertEqual(s["k_min"], 0.1)
+        run("report", "out", "linf.json", "direct.json", cwd=self.dir)
+        html = read(os.path.join(self.dir, "out", "index.html"))
+        self.assertIn("strict minimizer (direct) is less distorting than L\u221e (least maximum)", html)
+        self.assertIn("values within 0.001, direct&#39;s delta-k, count as equal", html)
+
     def test_a_report_cut_short_leaves_no_index(self):
         """The index is written last and the previous one is removed first, so a report whose
         writing stopped (here an error; a second Ctrl-C alike) has no index.html: the older
@@ -257,6 +272,8 @@ class Report(unittest.TestCase):
                                    # words no tool writes (taken without a word, exit 0 and 2)
                                    ("task", "banana", 'unknown task "banana"'),
                                    ("status", "weird", 'unknown status "weird"'),
+                                   # it ties direct's values in the verdicts
+                                   ("delta_k", -1, "delta_k -1 is not a number in (0, 1)"),
                                    # another map's input (it was filed under the input's section,
                                    # with the warning "input mesh not found")
                                    ("input", "example:bar", "they are not one map's rest and image")):

@@ -28,6 +28,9 @@ struct MethodRun {
   double time_s = std::numeric_limits<double>::quiet_NaN();
   std::string status = "solved";
   std::string message;
+  // Values closer than this count as equal in the strict-order verdicts (at least 1e-6):
+  // direct's delta-k, the band it fixes each level's elements in (docs/strict.md).
+  double order_tolerance = 0;
   std::string view_name;       // file stem of its pictures; empty: the method name (made unique)
   std::vector<std::pair<std::string, std::string>> links;  // (text, path relative to the report folder)
 };

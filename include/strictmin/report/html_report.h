@@ -28,6 +28,7 @@ struct MethodEntry {
   double time_s = std::numeric_limits<double>::quiet_NaN();
   std::string status = "solved";
   std::string message;
+  double order_tolerance = 0;  // values closer tie in the verdicts (MethodRun::order_tolerance)
   Eigen::VectorXd distortion, weights;  // #E: for the verdicts and the area near the top
 };
 
