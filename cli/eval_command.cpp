@@ -13,6 +13,7 @@ namespace {
 
 struct EvalArgs {
   std::string rest, mapped, measure = "auto", output;
+  double uv_scale = 1;  // the UVs are multiplied by it (gparam's OBJ: the map / its edge length)
   OutputOptions out;
   ReportArgs report;
 };
@@ -78,6 +79,18 @@ int run_eval(const EvalArgs& a) {
     mapped = read_mesh(a.mapped, &warnings, image);
   }
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
+  if (a.uv_scale != 1) {
+    if (!mapped.has_uv())
+      throw InputError("--uv-scale: " + (a.mapped.empty() ? a.rest : a.mapped) +
+                       " has no texture coordinates (vt) to scale");
+    mapped.UV *= a.uv_scale;
+  } else if (mapped.has_uv() && mapped.UV.rows() != mapped.num_vertices() && a.measure != "qc" && a.measure != "iso") {
+    // A seamed (per-corner) layout is most likely gparam's, whose vt are in grid units.
+    progress(a.out, "warning: " + (a.mapped.empty() ? a.rest : a.mapped) +
+                        " has seams (texture coordinates per corner): if it is gparam's output, its UVs are the map "
+                        "divided by the edge length, so give --uv-scale EDGE_LENGTH (the summary's edge_length) "
+                        "to measure the map gparam measured");
+  }
   const bool parametrization = mapped.has_uv() || (rest.element_type() == ElementType::Triangle && !rest.is_planar() &&
                                                    mapped.dim() == 2);
   std::string measure_text = a.measure;
@@ -106,6 +119,7 @@ int run_eval(const EvalArgs& a) {
   s["output"] = a.output;  // the -o mesh with its per-element distortion, as every task's summary says it
   s["map_kind"] = parametrization ? "parametrization" : "deformation";
   s["measure"] = measure_name(*measure);
+  s["uv_scale"] = a.uv_scale;
   s["elements"] = rest.num_elements();
   s["vertices"] = rest.num_vertices();
   add_distortion_summary(s, d.stats);
@@ -135,6 +149,11 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   cmd->add_option("mapped", args->mapped, "Mapped mesh: same elements; an OBJ with vt counts as a UV map of REST");
   cmd->add_option("--measure", args->measure,
                   "fd, arap, asap, qc or iso; auto = arap for parametrizations, fd for deformations")
+      ->capture_default_str();
+  cmd->add_option("--uv-scale", args->uv_scale,
+                  "Multiply the texture coordinates by this before measuring (> 0). gparam's OBJ holds the map "
+                  "divided by its edge length: give the summary's edge_length to measure what gparam measured")
+      ->check(greater_than(0))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Write the mesh with per-element distortion (.ply: 'quality')");
   add_output_options(*cmd, args->out);

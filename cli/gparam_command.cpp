@@ -45,7 +45,7 @@ GParamOptions make_options(const GParamArgs& a, const Mesh& mesh) {
   if (!measure || (*measure != Measure::FieldDeviation && *measure != Measure::Arap))
     throw InputError("--measure: unknown or unavailable measure '" + a.measure + "' for gparam (use fd or arap)");
   o.measure = *measure;
-  refuse_local_global_flags(a.lg_steps, o.measure);
+  refuse_local_global_flags(a.lg_steps, o.measure, /*task_has_asap=*/false);
   refuse_frame_iterations(a.solver, o.measure, "gparam");
   refuse_other_methods_flags(a.solver);
   if (a.edge_length_given && a.quads_given) throw InputError("give --edge-length or --quads, not both");

@@ -146,14 +146,16 @@ std::string problem_key(const nlohmann::json& s, const std::string& location) {
 // A summary is checked against its own files before anything of it is shown: a hand-edited or
 // mismatched summary would otherwise put a wrong count, maximum or bound on the page (a
 // "certified lower bound" above the map's own maximum, a negative qc distortion).
+// tolerance: relative, for max_distortion (a map read back from its file carries its digits'
+// round-off into a recomputed distortion).
 void check_summary_figures(const nlohmann::json& s, const std::string& file, const std::string& distortion_path,
-                           const Eigen::VectorXd& values, const std::string& measure) {
+                           const Eigen::VectorXd& values, const std::string& measure, double tolerance = 1e-9) {
   auto number = [&](const char* key) { return s.contains(key) && s[key].is_number() ? s[key].get<double>() : NAN; };
   double file_max = 0;
   for (double v : values) file_max = std::max(file_max, v);
   const double summary_max = number("max_distortion");
   if (std::isfinite(summary_max) && std::isfinite(file_max) &&
-      std::abs(summary_max - file_max) > 1e-9 * std::max(1.0, std::abs(file_max)))
+      std::abs(summary_max - file_max) > tolerance * std::max(1.0, std::abs(file_max)))
     throw InputError(file + ": max_distortion " + shown_number(summary_max, 10) + " disagrees with " +
                      distortion_path + ", whose largest value is " + shown_number(file_max, 10));
   const double bound = number("lower_bound");
@@ -314,8 +316,18 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
       throw InputError(file + ": the summary names no distortion_file, and a parametrization's fd (against the "
                               "task's frames) cannot be recomputed from the map: run the task with --distortion FILE");
     if (!mapped.has_uv()) mapped = to_planar(mapped);
-    r.run.distortion =
-        report_values(*measure, map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion);
+    // gparam's OBJ holds the map divided by its edge length h (UV in grid units); its
+    // distortion is the map's against unit targets, so the UVs are scaled back by h.
+    if (text("task") == "gparam") {
+      const double h = number("edge_length");
+      if (!(h > 0) || !std::isfinite(h))
+        throw InputError(file + ": a gparam summary needs its edge_length (a positive number) to recompute the "
+                                "distortion from " + mapped_path + ": run the task with --distortion FILE");
+      mapped.UV *= h;
+    }
+    const Eigen::VectorXd recomputed = map_distortion(to_planar(*r.rest), mapped, *measure, r.input, mapped_path).distortion;
+    check_summary_figures(s, file, mapped_path + " (its distortion recomputed)", recomputed, measure_text, 1e-6);
+    r.run.distortion = report_values(*measure, recomputed);
     progress(out, "warning: " + file + ": no distortion_file (run with --distortion FILE); recomputed from " +
                       mapped_path);
   } else {

@@ -135,11 +135,13 @@ void apply_local_global_options(const LocalGlobalArgs& a, LocalGlobalOptions& o)
   apply_local_global_step_options(a, o);
 }
 
-void refuse_local_global_flags(const LocalGlobalArgs& a, Measure measure) {
+void refuse_local_global_flags(const LocalGlobalArgs& a, Measure measure, bool task_has_asap) {
   if (measure == Measure::Arap || measure == Measure::Asap) return;
   for (const CLI::Option* option : a.options)
     if (given(option))
-      throw InputError(option->get_name() + " applies to --measure arap or asap (their local-global iterations), not " +
+      throw InputError(option->get_name() +
+                       (task_has_asap ? " applies to --measure arap or asap (their local-global iterations), not "
+                                      : " applies to --measure arap (its local-global iterations), not ") +
                        measure_name(measure) + ", which takes no local steps");
 }
 

@@ -71,7 +71,8 @@ void apply_local_global_step_options(const LocalGlobalArgs& args, LocalGlobalOpt
 void apply_local_global_options(const LocalGlobalArgs& args, LocalGlobalOptions& options);
 // Throws InputError naming the first local-global flag given when the measure takes no
 // local steps (fd, qc, iso): it would be ignored.
-void refuse_local_global_flags(const LocalGlobalArgs& args, Measure measure);
+// task_has_asap: false for gparam (no asap measure there: the message names arap alone).
+void refuse_local_global_flags(const LocalGlobalArgs& args, Measure measure, bool task_has_asap = true);
 
 // Parses the method names and wires progress reporting (stderr unless --quiet).
 // Throws InputError for an unknown method.

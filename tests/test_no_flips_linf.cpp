@@ -34,6 +34,23 @@ Problem bar(double angle, double ends) {
   return p;
 }
 
+// A 12 x 2 x 2 tet box of [0, 6] x [0, 1] x [0, 1], its ends turned about the x axis by
+// -+angle and moved to x = ends, 6 - ends.
+Problem tet_bar(double angle, double ends) {
+  const Mesh m = make_tet_box(12, 2, 2, 6.0, 1.0, 1.0);
+  std::vector<Handle> handles;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.V(v, 0);
+    if (x > 0 && x < 6.0) continue;
+    const Eigen::Vector3d c(x, 0.5, 0.5), to(x == 0 ? ends : 6.0 - ends, 0.5, 0.5);
+    const Eigen::AngleAxisd turn(x == 0 ? -angle : angle, Eigen::Vector3d::UnitX());
+    handles.push_back({v, turn * (m.V.row(v).transpose() - c) + to});
+  }
+  Problem p = make_problem(m);
+  p.fix(handles);
+  return p;
+}
+
 int flipped(const Problem& p, const Eigen::MatrixXd& X) {
   const Eigen::VectorXi positive = positively_oriented(p, X);
   return static_cast<int>(positive.size() - positive.sum());
@@ -80,4 +97,67 @@ TEST(NoFlipsLinf, NoFlipAddedWhereTheConesBind) {
   EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
   EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
   EXPECT_LE(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
+}
+
+// Tets (the diagonally dominant cones): a quarter twist from the L2 map adds no flip, so the
+// cone step reaches the field deviation solver's optimum (each to a gap of 1e-8).
+TEST(NoFlipsLinf, TetsSameOptimumWhereTheConesDoNotBind) {
+  Problem p = tet_bar(0.4, 0.0);
+  const Eigen::MatrixXd X0 = solve_l2(p).positions;
+  ASSERT_EQ(flipped(p, X0), 0);
+  p.positions = X0;
+  const Result free_step = solve_linf(p, {});
+  ASSERT_EQ(free_step.status, SolveStatus::Solved) << free_step.message;
+  ASSERT_EQ(flips_added(p, X0, free_step.positions), 0);
+  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+  ASSERT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
+  const double k_free = free_step.distortion.maxCoeff(), k_cone = cone_step.distortion.maxCoeff();
+  EXPECT_NEAR(k_cone, k_free, 1e-6 * k_free);
+  EXPECT_GE(cone_step.lower_bound, k_free * (1 - 1e-6));
+  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+}
+
+// Tets squeezed to a third and twisted by 1.6 rad each way: the unconstrained optimum from
+// the L2 map flips tets, the cone step none, at a maximum between the two.
+TEST(NoFlipsLinf, TetsNoFlipAddedWhereTheConesBind) {
+  Problem p = tet_bar(1.6, 2.0);
+  const Eigen::MatrixXd X0 = solve_l2(p).positions;
+  p.positions = X0;
+  const Result free_step = solve_linf(p, {});
+  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+  std::printf("start: %d flipped, max %.6g; free: max %.6g, %d added; cones: max %.6g, %d added (%s)\n",
+              flipped(p, X0), field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
+              flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
+              flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
+  ASSERT_GT(flips_added(p, X0, free_step.positions), 0) << "the case must make the cones bind";
+  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+  EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
+  EXPECT_LT(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
+}
+
+// deform --no-flips with fd and linf, from the rest pose with the handles moved (planar and
+// tets): the unconstrained optimum flips elements; cutting it back alone stays near the start,
+// the steps inside the cones go on to a maximum far lower, still adding no flip, and stop
+// when a step no longer lowers it (solved). The unconstrained bound stays the lower bound.
+TEST(NoFlipsLinf, StepsAfterTheCutBack) {
+  for (const bool tets : {false, true}) {
+    const Problem p = tets ? tet_bar(1.6, 2.0) : bar(1.6, 2.0);
+    const Eigen::MatrixXd start = p.positions;
+    const Result free_solve = solve_linf(p, {});
+    ASSERT_GT(flips_added(p, start, free_solve.positions), 0) << "the case must flip";
+    Result cut = free_solve;
+    cut_back_result(p, start, cut);
+    Result stepped = free_solve;
+    remove_added_flips(p, start, true, {}, stepped);
+    std::printf("%s: free %.6g, cut back %.6g, steps %.6g (%s)\n", tets ? "tets" : "planar",
+                free_solve.distortion.maxCoeff(), cut.distortion.maxCoeff(), stepped.distortion.maxCoeff(),
+                stepped.message.c_str());
+    EXPECT_EQ(flips_added(p, start, stepped.positions), 0);
+    EXPECT_EQ(stepped.status, SolveStatus::Solved) << stepped.message;
+    EXPECT_NE(stepped.message.find("steps inside the orientation-preserving cones"), std::string::npos);
+    EXPECT_EQ(stepped.lower_bound, free_solve.lower_bound);
+    EXPECT_GE(stepped.distortion.maxCoeff(), free_solve.lower_bound);
+    EXPECT_LT(stepped.distortion.maxCoeff(), 0.5 * cut.distortion.maxCoeff());
+    EXPECT_NEAR(stepped.distortion.maxCoeff(), field_deviation(p, stepped.positions).maxCoeff(), 1e-12);
+  }
 }

@@ -118,7 +118,9 @@ void check_task_ranges(const TaskOptions& o, Task task, const std::string& key) 
 
 void refuse_local_global_keys(const TaskOptions& o, Measure measure) {
   if (o.local_global_key.empty() || measure == Measure::Arap || measure == Measure::Asap) return;
-  throw InputError(o.local_global_key + " applies to measure 'arap' or 'asap' (their local-global iterations), not '" +
+  throw InputError(o.local_global_key +
+                   (o.task == Task::GParam ? " applies to measure 'arap' (its local-global iterations), not '"
+                                           : " applies to measure 'arap' or 'asap' (their local-global iterations), not '") +
                    measure_name(measure) + "', which takes no local steps");
 }
 
@@ -137,6 +139,7 @@ void refuse_measure_keys(const TaskOptions& o, std::optional<Measure> measure) {
 TaskOptions parse_options(Task task, const std::string& function, const std::string& method,
                           const py::dict& options) {
   TaskOptions o;
+  o.task = task;
   if (task == Task::Interp) o.solver.direct.k_min = kInterpKMin;  // interp's own default (interp.h)
   for (const auto& [k, v] : options) {
     const std::string key = py::str(k);

@@ -15,6 +15,7 @@ namespace strictmin::python {
 enum class Task { Deform, Param, Interp, GParam };
 
 struct TaskOptions {
+  Task task = Task::Deform;
   SolverOptions solver;
   LocalGlobalOptions local_global;
   std::string init;           // param: tutte (default) or lscm; relax: l2, lp, irls, linf

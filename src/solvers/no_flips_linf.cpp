@@ -1,5 +1,6 @@
 #include "solvers/no_flips_linf.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,20 +19,49 @@ namespace {
 
 using qc::add_row;
 
-// The program. Variables: y = x / parts.map_scale (the map's free dofs in rest-pose length
-// units, as the qc programs), then k. Rows s = h - G (y, k), cone by cone.
+// The program. Variables: y = x / map_scale (the map's free dofs in rest-pose length units,
+// as the qc programs), then k. Rows s = h - G (y, k), cone by cone.
 struct StepProgram {
   qc::SparseSocp program;
-  int k_index = 0;
+  int num_x = 0;  // k's index
+  double map_scale = 1;
 };
 
-// d0: the field deviation of every element at the start (the constant elements' enter k's floor).
-StepProgram build(const Problem& p, const qc::ConformalParts& parts, const Eigen::VectorXd& x0,
-                  const Eigen::VectorXd& d0) {
+// Appends the row k >= the constant elements' distortion (elements without a free vertex,
+// active[e] == 0; d0 holds every element's at the start), when there are any.
+void add_constant_floor(const std::vector<char>& active, const Eigen::VectorXd& d0, int k_index, int& row,
+                        std::vector<Eigen::Triplet<double>>& t, std::vector<double>& h, std::vector<int>& dims) {
+  double constant = 0;
+  bool any_constant = false;
+  for (int e = 0; e < static_cast<int>(active.size()); ++e)
+    if (!active[e]) constant = std::max(constant, d0[e]), any_constant = true;
+  if (!any_constant) return;
+  t.emplace_back(row, k_index, -1.0);
+  h.push_back(-constant);
+  dims.push_back(1);
+  ++row;
+}
+
+void finish(StepProgram& out, int row, const std::vector<Eigen::Triplet<double>>& t, const std::vector<double>& h,
+            std::vector<int> dims) {
+  const int n = out.num_x;
+  out.program.G.resize(row, n + 1);
+  out.program.G.setFromTriplets(t.begin(), t.end());
+  out.program.h = Eigen::Map<const Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
+  out.program.c = Eigen::VectorXd::Zero(n + 1);
+  out.program.c[n] = 1.0;
+  out.program.dims = std::move(dims);
+}
+
+// Planar maps (docs/arap.md): Lipman's cone in the conformal parts. d0: the field deviation
+// of every element at the start.
+StepProgram build_planar(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0) {
+  const qc::ConformalParts parts = qc::conformal_parts(p);
   const int E = parts.count(), n = parts.num_x;
   const double L = parts.map_scale;
   StepProgram out;
-  out.k_index = n;
+  out.num_x = n;
+  out.map_scale = L;
   std::vector<Eigen::Triplet<double>> t;
   std::vector<double> h;
   std::vector<int> dims;
@@ -71,25 +101,89 @@ StepProgram build(const Problem& p, const qc::ConformalParts& parts, const Eigen
     dims.push_back(3);
     row += 3;
   }
-  // k >= the constant elements' distortion (no free vertex: not in parts).
   std::vector<char> active(p.num_elements(), 0);
   for (int e : parts.element) active[e] = 1;
-  double constant = 0;
-  bool any_constant = false;
-  for (int e = 0; e < p.num_elements(); ++e)
-    if (!active[e]) constant = std::max(constant, d0[e]), any_constant = true;
-  if (any_constant) {
+  add_constant_floor(active, d0, n, row, t, h, dims);
+  finish(out, row, t, h, std::move(dims));
+  return out;
+}
+
+// For det J > 0: V (a rotation) and sigma > 0 from J^T J = V diag(sigma^2) V^T, and
+// U = J V diag(sigma)^-1, so J = U diag(sigma) V^T with det U > 0. (The cones need only
+// det U det V > 0 to keep det J >= 0, and U^T J V close to diag(sigma) for X0 to lie well
+// inside them: round-off in U is harmless.)
+void proper_svd(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& sigma, Eigen::Matrix3d& V) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(J.transpose() * J);
+  V = eig.eigenvectors();
+  if (V.determinant() < 0) V.col(0) *= -1;
+  sigma = eig.eigenvalues().cwiseMax(0).cwiseSqrt();
+  sigma = sigma.cwiseMax(1e-12 * sigma.maxCoeff());
+  U = J * V * sigma.cwiseInverse().asDiagonal();
+}
+
+// Tets: the field deviation's cone ||J_T - R_T||_F <= k (10 rows), and where det J_T(X0) > 0
+// a convex set of orientation-preserving J around J_T(X0) = U diag(sigma) V^T: with
+// S = sym(C U^T J V C), C = diag(sigma)^(-1/2), every row diagonally dominant,
+//   S_ii >= sqrt(2) ||(S_ij, S_il)||  (j, l the other two; three 3-cones),
+// so S is positive semidefinite, the eigenvalues of U^T J V have non-negative real parts, and
+// det J = det(U^T J V) >= 0 (> 0 inside the cones). At X0, S = I: strictly inside.
+StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0) {
+  const Problem::Reduced red = p.reduced();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> G = red.G;
+  const int n = static_cast<int>(G.cols()), E = p.num_elements();
+  double sum = 0;
+  for (Eigen::Index i = 0; i < G.nonZeros(); ++i) sum += G.valuePtr()[i] * G.valuePtr()[i];
+  StepProgram out;
+  out.num_x = n;
+  out.map_scale = sum > 0 ? 1.0 / std::sqrt(sum / static_cast<double>(G.nonZeros())) : 1.0;
+  const double L = out.map_scale;
+  const Eigen::VectorXd j0 = G * x0 - red.h;  // vec(J - R) at x0
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> h;
+  std::vector<int> dims;
+  std::vector<char> active(E, 0);
+  int row = 0;
+  for (int e = 0; e < E; ++e) {
+    for (int r = 0; r < 9; ++r) active[e] = active[e] || G.outerIndexPtr()[9 * e + r + 1] > G.outerIndexPtr()[9 * e + r];
+    if (!active[e]) continue;
+    // ||vec(J - R)|| <= k: s = (k, G_e x - h_e).
     t.emplace_back(row, n, -1.0);
-    h.push_back(-constant);
-    dims.push_back(1);
-    ++row;
+    h.push_back(0.0);
+    for (int r = 0; r < 9; ++r) {
+      qc::add_row(G, 9 * e + r, -L, row + 1 + r, t);
+      h.push_back(-red.h[9 * e + r]);
+    }
+    dims.push_back(10);
+    row += 10;
+    const Eigen::Matrix3d R = p.target(e);
+    const Eigen::Matrix3d J0 = R + Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(j0.data() + 9 * e);
+    if (!(J0.determinant() > 0)) continue;
+    Eigen::Matrix3d U, V;
+    Eigen::Vector3d sigma;
+    proper_svd(J0, U, sigma, V);
+    const Eigen::Vector3d c = sigma.cwiseSqrt().cwiseInverse();
+    // S_ab = sum_rc w_rc J_rc, w_rc = c_a c_b (U_ra V_cb + U_rb V_ca) / 2, J = (G_e x - h_e) + R.
+    auto add_entry = [&](int a, int b, double scale) {
+      double offset = 0;
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) {
+          const double w = scale * c[a] * c[b] * 0.5 * (U(r, a) * V(col, b) + U(r, b) * V(col, a));
+          if (w == 0) continue;
+          qc::add_row(G, 9 * e + 3 * r + col, -w * L, row, t);
+          offset += w * (R(r, col) - red.h[9 * e + 3 * r + col]);
+        }
+      h.push_back(offset);
+      ++row;
+    };
+    for (int a = 0; a < 3; ++a) {
+      add_entry(a, a, 1.0);
+      for (int b = 0; b < 3; ++b)
+        if (b != a) add_entry(a, b, std::sqrt(2.0));
+      dims.push_back(3);
+    }
   }
-  out.program.G.resize(row, n + 1);
-  out.program.G.setFromTriplets(t.begin(), t.end());
-  out.program.h = Eigen::Map<const Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
-  out.program.c = Eigen::VectorXd::Zero(n + 1);
-  out.program.c[n] = 1.0;
-  out.program.dims = std::move(dims);
+  add_constant_floor(active, d0, n, row, t, h, dims);
+  finish(out, row, t, h, std::move(dims));
   return out;
 }
 
@@ -106,29 +200,31 @@ SolveStatus status_of(qc::SparseSocpStatus s) {
 }  // namespace
 
 bool linf_without_new_flips_applies(const Problem& p, const LinfOptions& o) {
-  return p.image_dim == 2 && p.domain_dim == 2 && !p.has_equalities() && o.element_bounds.size() == 0;
+  const bool planar = p.image_dim == 2 && p.domain_dim == 2, tets = p.image_dim == 3 && p.domain_dim == 3;
+  return (planar || tets) && !p.has_equalities() && o.element_bounds.size() == 0;
 }
 
-Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance) {
+Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance,
+                              double feasibility_tolerance) {
   const auto t0 = std::chrono::steady_clock::now();
   Problem p = problem;
   p.positions = X0;
-  const qc::ConformalParts parts = qc::conformal_parts(p);
   const Eigen::VectorXd x0 = p.free_dofs(X0);
   const Eigen::VectorXd d0 = field_deviation(p, X0);
-  const StepProgram step = build(p, parts, x0, d0);
+  const StepProgram step = p.domain_dim == 3 ? build_tets(p, x0, d0) : build_planar(p, x0, d0);
   // The start: X0 with k at its maximum (the solver lifts the slacks into the cones).
-  Eigen::VectorXd v0(parts.num_x + 1);
-  v0.head(parts.num_x) = x0 / parts.map_scale;
-  v0[step.k_index] = d0.size() ? 1.01 * d0.maxCoeff() + 1e-12 : 0.0;
+  Eigen::VectorXd v0(step.num_x + 1);
+  v0.head(step.num_x) = x0 / step.map_scale;
+  v0[step.num_x] = d0.size() ? 1.01 * d0.maxCoeff() + 1e-12 : 0.0;
   qc::SparseSocpSettings settings;
   settings.gap_tolerance = gap_tolerance;
+  settings.feasibility_tolerance = feasibility_tolerance;
   qc::SparseCholeskyCache cache;
   const qc::SparseSocpOutcome r = qc::solve_sparse_socp(step.program, v0, settings, nullptr, &cache);
   Result out;
   out.status = status_of(r.status);
   out.iterations = r.iterations;
-  const Eigen::MatrixXd X = p.with_free_dofs(r.x.head(parts.num_x) * parts.map_scale);
+  const Eigen::MatrixXd X = p.with_free_dofs(r.x.head(step.num_x) * step.map_scale);
   // The solver's map when it is no worse than the start and adds no flip (it cannot, to
   // round-off; checked), else the start.
   const Eigen::VectorXd d = field_deviation(p, X);
@@ -142,6 +238,69 @@ Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0,
                 " interior-point iterations)";
   out.time_s = seconds_since(t0);
   return out;
+}
+
+void linf_steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd& start, const LinfOptions& options,
+                                  Result& result, int max_steps, double relative_change) {
+  // Each step is one of a sequence around a moving map: its optimum is needed roughly only
+  // (a step that stops short, still lower, is kept; the next one goes on from it).
+  constexpr double kStepGap = 1e-2;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double unconstrained_time = result.time_s;
+  if (!result.usable() || flips_added(problem, start, result.positions) == 0) return;
+  cut_back_result(problem, start, result);
+  const std::string cut = result.message;
+  Eigen::MatrixXd X = result.positions;
+  double max = result.distortion.size() ? result.distortion.maxCoeff() : 0.0;
+  SolveStatus status = SolveStatus::MaxIterations;
+  std::string reason = "the cap of " + std::to_string(max_steps) + " steps";
+  int steps = 0;
+  double last_change = 1;
+  while (steps < max_steps) {
+    const double gap = std::max(options.gap_tolerance, std::min(kStepGap, 0.1 * last_change));
+    const Result step = linf_without_new_flips(problem, X, gap, gap);
+    ++steps;
+    const double step_max = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
+    const double change = max > 0 ? (max - step_max) / max : 0.0;
+    X = step.positions;
+    max = step_max;
+    last_change = change;
+    if (options.progress) {
+      IterationRecord rec;
+      rec.iteration = steps;
+      rec.max_distortion = max;
+      rec.lower_bound = result.lower_bound;
+      rec.relative_change = change;
+      rec.time_s = unconstrained_time + seconds_since(t0);
+      options.progress(rec);
+    }
+    // A step that stopped short but lowered the maximum is kept, and the next one goes on
+    // from it; the steps end when one no longer lowers it (it returns X when it cannot).
+    if (!(change >= relative_change)) {
+      const bool converged = step.status == SolveStatus::Solved;
+      status = converged ? SolveStatus::Solved : SolveStatus::Stalled;
+      reason = "the maximum changed by " + std::to_string(change) + " (relative, below " +
+               std::to_string(relative_change) + ")" + (converged ? "" : " in a step that stopped short: " + step.message);
+      break;
+    }
+  }
+  result.positions = X;
+  result.distortion = field_deviation(problem, X);
+  result.status = status;
+  result.iterations += steps;
+  result.message = cut + "; then " + std::to_string(steps) +
+                   " L-infinity steps inside the orientation-preserving cones around the map, stopped by " + reason +
+                   " (maximum " + std::to_string(max) + "; the unconstrained optimum's certified bound " +
+                   std::to_string(result.lower_bound) + ")";
+  result.time_s = unconstrained_time + seconds_since(t0);
+}
+
+void remove_added_flips(const Problem& problem, const Eigen::MatrixXd& start, bool linf, const LinfOptions& options,
+                        Result& result) {
+  if (linf && linf_without_new_flips_applies(problem, options))
+    linf_steps_without_new_flips(problem, start, options, result);
+  else
+    cut_back_result(problem, start, result);
 }
 
 }  // namespace strictmin

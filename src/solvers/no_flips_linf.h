@@ -1,7 +1,8 @@
 #pragma once
-// The L-infinity global step of local-global under --no-flips on planar maps (docs/arap.md,
-// "--no-flips"): the field deviation's program for the current targets, restricted to
-// Lipman's (2012) convex subset of orientation-preserving Jacobians around the start map.
+// The L-infinity global step of local-global under --no-flips (docs/arap.md, "--no-flips"):
+// the field deviation's program for the current targets, restricted to a convex subset of
+// orientation-preserving Jacobians around the start map. On planar maps it is Lipman's
+// (2012):
 // With a, b the conformal and anticonformal parts of J_T and r, s those of the target R_T
 // (qc/qc_program.h), ||J_T - R_T||^2 = 2 |a - r|^2 + 2 |b - s|^2, and the step is
 //   minimize k  subject to, for every element with a free vertex,
@@ -13,6 +14,10 @@
 // step's maximum is no higher than X0's for these targets, and local-global's guarantee
 // (the maximum never increases) holds without cutting the step back. Solved by the general
 // sparse cone solver of the Section 7 measures (qc/sparse_socp.h).
+// On tets, with J_T(X0) = U diag(sigma) V^T (det U = det V = 1) and C = diag(sigma)^(-1/2),
+// the symmetric part S of C U^T J_T V C is kept diagonally dominant,
+// S_ii >= sqrt(2) ||(S_ij, S_il)|| (three 3-cones): S is then positive semidefinite, so the
+// eigenvalues of U^T J_T V have non-negative real parts and det J_T >= 0. At X0, S = I.
 #include <Eigen/Core>
 
 #include "strictmin/problem/problem.h"
@@ -21,14 +26,33 @@
 
 namespace strictmin {
 
-// Whether the step applies: a 2D map of triangles with no linear equalities and no element
-// bounds (direct's levels keep the cut-back).
+// Whether the step applies: a 2D map of triangles or a 3D map of tets, with no linear
+// equalities and no element bounds (direct's levels keep the cut-back).
 bool linf_without_new_flips_applies(const Problem& problem, const LinfOptions& options);
 
-// The step from X0 (#V by 2) for the problem's targets, to the relative gap gap_tolerance.
+// The step from X0 (#V by image_dim) for the problem's targets, to the relative gap gap_tolerance
+// and relative residuals feasibility_tolerance (the map returned is checked either way: no flip
+// added, maximum no higher).
 // lower_bound: a certified bound on this restricted program's optimum (not on the
 // unconstrained field deviation's). Status from the cone solver (solved, max-iterations,
 // numerical-error); X0 is returned when no iterate improved on it.
-Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance);
+Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance,
+                              double feasibility_tolerance = 1e-9);
+
+// --no-flips with field deviation and linf (one solve, deform and param), where the solve
+// added flips to `start`: from the solve cut back to add none (cut_back_result), steps
+// X <- linf_without_new_flips(X) until the maximum changes by less than relative_change
+// (relative) or max_steps steps were taken. `result` is the unconstrained solve on entry and
+// the map on return; its lower_bound stays (it bounds every map, flip-free or not). Status:
+// solved when the steps converged, max-iterations at max_steps, a step's failure otherwise
+// (the last map is kept: every step adds no flip and lowers no bound). `progress` (may be
+// null) sees one record per step.
+void linf_steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd& start, const LinfOptions& options,
+                                  Result& result, int max_steps = 100, double relative_change = 1e-3);
+
+// --no-flips after one solve (fd in deform and param): the steps above for an L-infinity
+// solve (`linf`) where linf_without_new_flips_applies, else cut_back_result.
+void remove_added_flips(const Problem& problem, const Eigen::MatrixXd& start, bool linf, const LinfOptions& options,
+                        Result& result);
 
 }  // namespace strictmin

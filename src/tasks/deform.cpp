@@ -10,6 +10,7 @@
 #include "strictmin/problem/surface_deformation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/no_flips.h"
+#include "solvers/no_flips_linf.h"
 #include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/deform_start.h"
 
@@ -93,8 +94,9 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
     solver.relax.no_flips = solver.relax.no_flips || options.no_flips;
     out.result = run_method(out.problem, solver);
     // One solve: cut it back along the segment from the start (fd is convex: the cut map's
-    // maximum is at most the start's) when it adds flips.
-    if (options.no_flips) cut_back_result(out.problem, out.start, out.result);
+    // maximum is at most the start's) when it adds flips; linf then steps on inside the
+    // orientation-preserving cones around the map (no_flips_linf.h).
+    if (options.no_flips) remove_added_flips(out.problem, out.start, solver.method == Method::Linf, solver.linf, out.result);
   }
   out.flips_added = flips_added(out.problem, out.start, out.result.positions);
   out.deformed = mesh;

@@ -10,6 +10,7 @@
 #include "strictmin/report/stats.h"
 #include "strictmin/tasks/conformal_method.h"
 #include "strictmin/solvers/no_flips.h"
+#include "solvers/no_flips_linf.h"
 #include "tasks/unit_size.h"
 
 namespace strictmin {
@@ -118,8 +119,9 @@ ParamOutcome parametrize_as_given(const Mesh& mesh, const ParamOptions& options,
     local_step(p, out.initial, lg);  // the frames: rotations of the initial map
     out.result = run_method(p, solver);
     // One solve: cut back along the segment from the initial map when it adds flips (fd is
-    // convex, so the cut map's maximum is at most the initial map's).
-    if (options.no_flips) cut_back_result(p, out.initial, out.result);
+    // convex, so the cut map's maximum is at most the initial map's); linf then steps on
+    // inside the orientation-preserving cones around the map (no_flips_linf.h).
+    if (options.no_flips) remove_added_flips(p, out.initial, solver.method == Method::Linf, solver.linf, out.result);
   } else {
     out.result = local_global(p, out.initial, solver, lg);
   }

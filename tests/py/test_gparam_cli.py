@@ -113,6 +113,28 @@ class GParam(CubeCase):
         self.assertEqual(len(fs), s["elements"])
         self.assertTrue(all("/" in l for l in fs))
 
+    def test_eval_measures_the_obj_at_the_edge_length(self):
+        # gparam's OBJ holds the map divided by the edge length h: eval measured that layout
+        # (ARAP 4.24 on the cube with h = 0.25, where gparam says 0) without a word. It now
+        # warns about a seamed layout, and --uv-scale h measures the map gparam measured.
+        run("gparam", self.cube, "--measure", "arap", "--method", "linf", "--edge-length", "0.25", "-o",
+            self.out("a.obj"), "--summary", self.out("a.json"), "-q", check_code=0)
+        with open(self.out("a.json")) as f:
+            g = json.load(f)
+        p = run("eval", self.cube, self.out("a.obj"), "--summary", "-", check_code=0)
+        self.assertIn("give --uv-scale EDGE_LENGTH", p.stderr)
+        self.assertAlmostEqual(json.loads(p.stdout)["max_distortion"], math.sqrt(2) * 3, places=9)
+        p = run("eval", self.cube, self.out("a.obj"), "--uv-scale", str(g["edge_length"]), "--summary", "-",
+                check_code=0)
+        self.assertNotIn("--uv-scale EDGE_LENGTH", p.stderr)
+        e = json.loads(p.stdout)
+        self.assertLess(abs(e["max_distortion"] - g["max_distortion"]), 1e-9)
+        self.assertEqual(e["uv_scale"], 0.25)
+        for bad, why in (("0", "--uv-scale"), ("nan", "not a finite number")):
+            self.assertIn(why, run("eval", self.cube, self.out("a.obj"), "--uv-scale", bad, check_code=1).stderr)
+        p = run("eval", self.cube, self.cube, "--uv-scale", "2", check_code=1)
+        self.assertIn("has no texture coordinates (vt) to scale", p.stderr)
+
     def test_surfaces_with_boundary(self):
         """A cube with one grid cell cut out of a side (a square hole: its corners are -1/4 on
         the boundary) and a cube without its top (a box: its bottom corners +1/4 inside, its rim
@@ -339,7 +361,7 @@ class GParam(CubeCase):
         self.expect_bad([self.write("fins.obj", fins)], ["non-manifold"])
         self.expect_bad([self.cube, "--edge-length", "0"], ["--edge-length"])
         # Local-global flags with fd (no local steps) were ignored.
-        self.expect_bad([self.cube, "--lg-iterations", "3"], ["--lg-iterations applies to --measure arap or asap"])
+        self.expect_bad([self.cube, "--lg-iterations", "3"], ["--lg-iterations applies to --measure arap (its local-global iterations), not fd"])
         # Out of the surface's scale (sqrt(area) = 2.45 here): the UV would overflow (1e-320 gave
         # inf texture coordinates reported as solved) or lose every digit.
         for h in ("1e-320", "1e-12", "1e12"):

@@ -321,6 +321,21 @@ class Report(unittest.TestCase):
         run("gparam", cube, "-o", "g.obj", "--summary", "g.json", "--quiet", cwd=self.dir, check_code=0)
         p = run("report", "out4", "g.json", cwd=self.dir, check_code=1)
         self.assertIn("run the task with --distortion FILE", p.stderr)
+        # Its ARAP can: the OBJ holds the map divided by the edge length h, scaled back by the
+        # summary's edge_length (the cube's map is an isometry: 0; without h it was shown as
+        # sqrt(2) |1/h - 1| = 4.24 and ranked against the other maps so). The recomputed maximum
+        # is checked against the summary's.
+        run("gparam", cube, "--measure", "arap", "--method", "linf", "--edge-length", "0.25", "-o", "a.obj",
+            "--summary", "a.json", "--quiet", cwd=self.dir, check_code=0)
+        run("report", "out6", "a.json", cwd=self.dir, check_code=0)
+        html = read(os.path.join(self.dir, "out6", "index.html"))
+        self.assertRegex(html, r"max distortion</td><td class=\"v\">[0-9.]+e-1[0-9]<")
+        summary = json.loads(read(os.path.join(self.dir, "a.json")))
+        summary["edge_length"] = 0.5
+        with open(os.path.join(self.dir, "a2.json"), "w") as f:
+            json.dump(summary, f)
+        p = run("report", "out7", "a2.json", cwd=self.dir, check_code=1)
+        self.assertIn("disagrees with a.obj (its distortion recomputed), whose largest value is 1.41421", p.stderr)
         p = run("report", "out3", "ply.json", cwd=self.dir, check_code=1)
         self.assertIn("'.ply' is written by the tasks but not read back", p.stderr)
         # One summary twice, under any name, would be compared with itself.

@@ -109,6 +109,9 @@ def test_options(square):
         strictmin.deform(V, F, idx, pos, lg_iterations=5)
     with pytest.raises(ValueError, match="lg_cold_start applies to measure 'arap' or 'asap' .*not 'qc'"):
         strictmin.param(V, F, measure="qc", lg_cold_start=True)
+    # gparam has no asap: its message names arap alone.
+    with pytest.raises(ValueError, match="^lg_iterations applies to measure 'arap' \\(its local-global iterations\\), not 'fd'"):
+        strictmin.gparam(V, F, lg_iterations=5)
     assert strictmin.deform(V, F, idx, pos, measure="arap", lg_iterations=3).positions.shape == V[:, :2].shape
     # exact's size limit names the keyword too (the message named only the CLI's flag).
     with pytest.raises(ValueError, match="18 elements is above its limit of 10 .*exact_max_elements in Python"):
