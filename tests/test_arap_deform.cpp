@@ -259,6 +259,34 @@ TEST(NoFlips, CutBackLocalGlobalFromTutte) {
               r.result.iterations, r.result.message.c_str());
 }
 
+// A local-global run whose global steps are cut back to add no flips stops changing because
+// it is held, not because it reached its fixed point: "stalled", not "solved" (it said
+// converged). lp's steps are cut back (linf's and l2's stay inside the orientation-preserving
+// cones instead); a 24 x 4 bar whose ends are squeezed to a third and turned inwards.
+TEST(NoFlips, ARunHeldBackByFlipsIsStalled) {
+  const Mesh m = make_grid(24, 4, 6.0, 1.0);
+  std::vector<Handle> handles;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.V(v, 0);
+    if (x > 0 && x < 6.0) continue;
+    const Eigen::Vector2d c(x, 0.5), to(x == 0 ? 2.0 : 4.0, 0.5);
+    handles.push_back({v, Eigen::Rotation2Dd(x == 0 ? -1.6 : 1.6) * (m.V.row(v).transpose() - c) + to});
+  }
+  Problem p = make_problem(m);
+  p.fix(handles);
+  const Eigen::MatrixXd start = solve_l2(p).positions;
+  SolverOptions solver;
+  solver.method = Method::Lp;
+  LocalGlobalOptions o;
+  o.no_flips = true;
+  o.no_flips_try_unconstrained = false;
+  const Result r = local_global(p, start, solver, o);
+  std::printf("%s: %s\n", status_name(r.status).c_str(), r.message.c_str());
+  EXPECT_EQ(flips_added(p, start, r.positions), 0);
+  EXPECT_EQ(r.status, SolveStatus::Stalled) << r.message;
+  EXPECT_NE(r.message.find("cut back to add no flips"), std::string::npos) << r.message;
+}
+
 TEST(NoFlips, CutBackAddsNoFlip) {
   Problem p = make_problem(make_grid(4, 4));
   Eigen::MatrixXd to = p.positions;

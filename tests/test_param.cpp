@@ -325,19 +325,26 @@ TEST(Param, TheVertexNumberingChangesNothing) {
   }
 }
 
-// l2 --no-flips is cut back at every step on fish (Tutte's 26.09 to 25.79, against 5.53
-// without the constraint): the steps stop changing because they are held, not because l2
-// reached its fixed point. That is "stalled", not "solved" (it said converged).
-TEST(Param, AnL2RunHeldBackByFlipsIsStalled) {
-  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk" / "fish.obj";
+// l2 --no-flips: each global step is the least L2 energy inside the orientation-preserving
+// cones around the map (no_flips_linf.h). Cutting the plain steps back instead stalled near
+// Tutte's map (fish 26.09 -> 25.79, against 5.53 without the constraint). On bimba_1k the
+// unconstrained map flips 150 triangles at RMS 0.7302; with the cones 0 flips at 0.7363
+// (measured), and l2's own criterion is met.
+TEST(Param, L2WithoutFlipsStepsInsideTheCones) {
+  const std::filesystem::path file = std::filesystem::path(STRICTMIN_SHARED_DATA) / "disk" / "bimba_1k.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared data at " << file;
+  const Mesh mesh = read_mesh(file.string());
   ParamOptions o;
   o.solver.method = Method::L2;
+  const ParamOutcome free_run = parametrize(mesh, o, file.string());
+  ASSERT_GT(free_run.flips, 0);
   o.no_flips = true;
-  const ParamOutcome r = parametrize(read_mesh(file.string()), o, file.string());
+  const ParamOutcome r = parametrize(mesh, o, file.string());
   EXPECT_EQ(r.flips, 0);
-  EXPECT_EQ(r.result.status, SolveStatus::Stalled) << r.result.message;
-  EXPECT_NE(r.result.message.find("cut back to add no flips"), std::string::npos) << r.result.message;
+  EXPECT_EQ(r.flips_added, 0);
+  EXPECT_EQ(r.result.status, SolveStatus::Solved) << r.result.message;
+  EXPECT_GE(r.measured.stats.l2, free_run.measured.stats.l2 * (1 - 1e-3));
+  EXPECT_LT(r.measured.stats.l2, free_run.measured.stats.l2 * 1.02);
 }
 
 // Issue 6's claim on every disk mesh of the shared data (up to 89k faces; 63 minutes on 2

@@ -8,64 +8,112 @@
 #include <string>
 #include <vector>
 
+#include "solvers/qc/qc_program.h"
+#include "solvers/qc/sparse_socp.h"
 #include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/no_flips.h"
 #include "strictmin/solvers/timing.h"
-#include "solvers/qc/qc_program.h"
-#include "solvers/qc/sparse_socp.h"
 
 namespace strictmin {
 namespace {
 
 using qc::add_row;
 
-// The program. Variables: y = x / map_scale (the map's free dofs in rest-pose length units,
-// as the qc programs), then k. Rows s = h - G (y, k), cone by cone.
+// The program. Variables: y = x / map_scale (the map's free dofs in rest-pose
+// length units, as the qc programs), then k (Maximum) or one t_T per element
+// with a free vertex (Energy). Rows s = h - G (y, ...), cone by cone.
 struct StepProgram {
   qc::SparseSocp program;
-  int num_x = 0;  // k's index
+  int num_x = 0;  // the first objective variable's index
   double map_scale = 1;
+  std::vector<int> element;  // Energy: the element of each t
 };
 
-// Appends the row k >= the constant elements' distortion (elements without a free vertex,
-// active[e] == 0; d0 holds every element's at the start), when there are any.
-void add_constant_floor(const std::vector<char>& active, const Eigen::VectorXd& d0, int k_index, int& row,
-                        std::vector<Eigen::Triplet<double>>& t, std::vector<double>& h, std::vector<int>& dims) {
-  double constant = 0;
-  bool any_constant = false;
-  for (int e = 0; e < static_cast<int>(active.size()); ++e)
-    if (!active[e]) constant = std::max(constant, d0[e]), any_constant = true;
-  if (!any_constant) return;
-  t.emplace_back(row, k_index, -1.0);
-  h.push_back(-constant);
-  dims.push_back(1);
-  ++row;
-}
+// Collects the rows, and gives each element's distortion cone its head: k >=
+// ||tail|| (Maximum) or the rotated cone ((t + 1) / 2, (t - 1) / 2, tail), i.e.
+// t >= ||tail||^2 (Energy).
+class Rows {
+ public:
+  Rows(StepObjective objective, int num_x) : objective_(objective), n_(num_x) {}
+  // Appends the head of element e's distortion cone; its tail rows follow at
+  // the returned row.
+  int head(int e) {
+    if (objective_ == StepObjective::Maximum) {
+      t.emplace_back(row, n_, -1.0);
+      h.push_back(0.0);
+      return row + 1;
+    }
+    const int column = n_ + static_cast<int>(element.size());
+    element.push_back(e);
+    t.emplace_back(row, column, -0.5);
+    h.push_back(0.5);
+    t.emplace_back(row + 1, column, -0.5);
+    h.push_back(-0.5);
+    return row + 2;
+  }
+  int head_rows() const { return objective_ == StepObjective::Maximum ? 1 : 2; }
+  // Ends a cone of `dim` rows that started at `row`.
+  void close(int dim) {
+    dims.push_back(dim);
+    row += dim;
+  }
+  // Maximum: k >= the constant elements' distortion (elements without a free
+  // vertex, active[e] == 0; d0 holds every element's at the start), when there
+  // are any. (They are constant terms of the energy.)
+  void constant_floor(const std::vector<char> &active, const Eigen::VectorXd &d0) {
+    if (objective_ != StepObjective::Maximum) return;
+    double constant = 0;
+    bool any_constant = false;
+    for (int e = 0; e < static_cast<int>(active.size()); ++e)
+      if (!active[e]) constant = std::max(constant, d0[e]), any_constant = true;
+    if (!any_constant) return;
+    t.emplace_back(row, n_, -1.0);
+    h.push_back(-constant);
+    close(1);
+  }
+  // The program: minimize k, or sum_T w_T t_T / sum_T w_T.
+  void finish(const Problem &p, StepProgram &out) {
+    const int columns = n_ + (objective_ == StepObjective::Maximum ? 1 : static_cast<int>(element.size()));
+    out.program.G.resize(row, columns);
+    out.program.G.setFromTriplets(t.begin(), t.end());
+    out.program.h = Eigen::Map<const Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
+    out.program.c = Eigen::VectorXd::Zero(columns);
+    if (objective_ == StepObjective::Maximum) {
+      out.program.c[n_] = 1.0;
+    } else {
+      double total = 0;
+      for (int e : element) total += p.weights[e];
+      for (size_t i = 0; i < element.size(); ++i)
+        out.program.c[n_ + i] = p.weights[element[i]] / std::max(total, 1e-300);
+    }
+    out.program.dims = std::move(dims);
+    out.element = std::move(element);
+  }
 
-void finish(StepProgram& out, int row, const std::vector<Eigen::Triplet<double>>& t, const std::vector<double>& h,
-            std::vector<int> dims) {
-  const int n = out.num_x;
-  out.program.G.resize(row, n + 1);
-  out.program.G.setFromTriplets(t.begin(), t.end());
-  out.program.h = Eigen::Map<const Eigen::VectorXd>(h.data(), static_cast<Eigen::Index>(h.size()));
-  out.program.c = Eigen::VectorXd::Zero(n + 1);
-  out.program.c[n] = 1.0;
-  out.program.dims = std::move(dims);
-}
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> h;
+  int row = 0;
 
-// Planar maps (docs/arap.md): Lipman's cone in the conformal parts. d0: the field deviation
-// of every element at the start.
-StepProgram build_planar(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0) {
+ private:
+  StepObjective objective_;
+  int n_;
+  std::vector<int> dims;
+  std::vector<int> element;
+};
+
+// Planar maps (docs/arap.md): Lipman's cone in the conformal parts. d0: the
+// field deviation of every element at the start.
+StepProgram build_planar(const Problem &p, const Eigen::VectorXd &x0, const Eigen::VectorXd &d0,
+                         StepObjective objective) {
   const qc::ConformalParts parts = qc::conformal_parts(p);
   const int E = parts.count(), n = parts.num_x;
   const double L = parts.map_scale;
   StepProgram out;
   out.num_x = n;
   out.map_scale = L;
-  std::vector<Eigen::Triplet<double>> t;
-  std::vector<double> h;
-  std::vector<int> dims;
-  int row = 0;
+  Rows rows(objective, n);
+  auto &t = rows.t;
+  auto &h = rows.h;
   Eigen::VectorXd a, b;
   qc::evaluate_ab(parts, x0, a, b);
   const double root2 = std::sqrt(2.0);
@@ -74,23 +122,22 @@ StepProgram build_planar(const Problem& p, const Eigen::VectorXd& x0, const Eige
     const Eigen::MatrixXd R = p.target(parts.element[i]);
     const double r0 = 0.5 * (R(0, 0) + R(1, 1)), r1 = 0.5 * (R(1, 0) - R(0, 1));
     const double s0 = 0.5 * (R(0, 0) - R(1, 1)), s1 = 0.5 * (R(1, 0) + R(0, 1));
-    // sqrt(2) ||(a - r, b - s)|| <= k.
-    t.emplace_back(row, n, -1.0);
-    h.push_back(0.0);
-    for (int j = 0; j < 2; ++j) {  // rows row+1, row+2: sqrt(2) (a - r)
-      add_row(parts.A, 2 * i + j, -root2 * L, row + 1 + j, t);
+    // ||J - R|| = sqrt(2) ||(a - r, b - s)||: the tail.
+    const int tail = rows.head(parts.element[i]);
+    for (int j = 0; j < 2; ++j) {  // sqrt(2) (a - r)
+      add_row(parts.A, 2 * i + j, -root2 * L, tail + j, t);
       h.push_back(root2 * (parts.a0[2 * i + j] - (j == 0 ? r0 : r1)));
     }
-    for (int j = 0; j < 2; ++j) {  // rows row+3, row+4: sqrt(2) (b - s)
-      add_row(parts.B, 2 * i + j, -root2 * L, row + 3 + j, t);
+    for (int j = 0; j < 2; ++j) {  // sqrt(2) (b - s)
+      add_row(parts.B, 2 * i + j, -root2 * L, tail + 2 + j, t);
       h.push_back(root2 * (parts.b0[2 * i + j] - (j == 0 ? s0 : s1)));
     }
-    dims.push_back(5);
-    row += 5;
+    rows.close(rows.head_rows() + 4);
     // |b| <= <a, f> where the element is positive at x0.
     const double na = std::hypot(a[2 * i], a[2 * i + 1]);
     if (!(na > std::hypot(b[2 * i], b[2 * i + 1]))) continue;
     const double f0 = a[2 * i] / na, f1 = a[2 * i + 1] / na;
+    const int row = rows.row;
     add_row(parts.A, 2 * i, -f0 * L, row, t);
     add_row(parts.A, 2 * i + 1, -f1 * L, row, t);
     h.push_back(f0 * parts.a0[2 * i] + f1 * parts.a0[2 * i + 1]);
@@ -98,21 +145,20 @@ StepProgram build_planar(const Problem& p, const Eigen::VectorXd& x0, const Eige
       add_row(parts.B, 2 * i + j, -L, row + 1 + j, t);
       h.push_back(parts.b0[2 * i + j]);
     }
-    dims.push_back(3);
-    row += 3;
+    rows.close(3);
   }
   std::vector<char> active(p.num_elements(), 0);
   for (int e : parts.element) active[e] = 1;
-  add_constant_floor(active, d0, n, row, t, h, dims);
-  finish(out, row, t, h, std::move(dims));
+  rows.constant_floor(active, d0);
+  rows.finish(p, out);
   return out;
 }
 
-// For det J > 0: V (a rotation) and sigma > 0 from J^T J = V diag(sigma^2) V^T, and
-// U = J V diag(sigma)^-1, so J = U diag(sigma) V^T with det U > 0. (The cones need only
-// det U det V > 0 to keep det J >= 0, and U^T J V close to diag(sigma) for X0 to lie well
-// inside them: round-off in U is harmless.)
-void proper_svd(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& sigma, Eigen::Matrix3d& V) {
+// For det J > 0: V (a rotation) and sigma > 0 from J^T J = V diag(sigma^2) V^T,
+// and U = J V diag(sigma)^-1, so J = U diag(sigma) V^T with det U > 0. (The
+// cones need only det U det V > 0 to keep det J >= 0, and U^T J V close to
+// diag(sigma) for X0 to lie well inside them: round-off in U is harmless.)
+void proper_svd(const Eigen::Matrix3d &J, Eigen::Matrix3d &U, Eigen::Vector3d &sigma, Eigen::Matrix3d &V) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(J.transpose() * J);
   V = eig.eigenvectors();
   if (V.determinant() < 0) V.col(0) *= -1;
@@ -121,13 +167,16 @@ void proper_svd(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& s
   U = J * V * sigma.cwiseInverse().asDiagonal();
 }
 
-// Tets: the field deviation's cone ||J_T - R_T||_F <= k (10 rows), and where det J_T(X0) > 0
-// a convex set of orientation-preserving J around J_T(X0) = U diag(sigma) V^T: with
-// S = sym(C U^T J V C), C = diag(sigma)^(-1/2), every row diagonally dominant,
+// Tets: the field deviation's cone ||J_T - R_T||_F <= k (10 rows), and where
+// det J_T(X0) > 0 a convex set of orientation-preserving J around J_T(X0) = U
+// diag(sigma) V^T: with S = sym(C U^T J V C), C = diag(sigma)^(-1/2), every row
+// diagonally dominant,
 //   S_ii >= sqrt(2) ||(S_ij, S_il)||  (j, l the other two; three 3-cones),
-// so S is positive semidefinite, the eigenvalues of U^T J V have non-negative real parts, and
-// det J = det(U^T J V) >= 0 (> 0 inside the cones). At X0, S = I: strictly inside.
-StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0) {
+// so S is positive semidefinite, the eigenvalues of U^T J V have non-negative
+// real parts, and det J = det(U^T J V) >= 0 (> 0 inside the cones). At X0, S =
+// I: strictly inside.
+StepProgram build_tets(const Problem &p, const Eigen::VectorXd &x0, const Eigen::VectorXd &d0,
+                       StepObjective objective) {
   const Problem::Reduced red = p.reduced();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> G = red.G;
   const int n = static_cast<int>(G.cols()), E = p.num_elements();
@@ -138,23 +187,21 @@ StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen:
   out.map_scale = sum > 0 ? 1.0 / std::sqrt(sum / static_cast<double>(G.nonZeros())) : 1.0;
   const double L = out.map_scale;
   const Eigen::VectorXd j0 = G * x0 - red.h;  // vec(J - R) at x0
-  std::vector<Eigen::Triplet<double>> t;
-  std::vector<double> h;
-  std::vector<int> dims;
+  Rows rows(objective, n);
+  auto &t = rows.t;
+  auto &h = rows.h;
   std::vector<char> active(E, 0);
-  int row = 0;
   for (int e = 0; e < E; ++e) {
-    for (int r = 0; r < 9; ++r) active[e] = active[e] || G.outerIndexPtr()[9 * e + r + 1] > G.outerIndexPtr()[9 * e + r];
+    for (int r = 0; r < 9; ++r)
+      active[e] = active[e] || G.outerIndexPtr()[9 * e + r + 1] > G.outerIndexPtr()[9 * e + r];
     if (!active[e]) continue;
-    // ||vec(J - R)|| <= k: s = (k, G_e x - h_e).
-    t.emplace_back(row, n, -1.0);
-    h.push_back(0.0);
+    // The tail vec(J - R) = G_e x - h_e.
+    const int tail = rows.head(e);
     for (int r = 0; r < 9; ++r) {
-      qc::add_row(G, 9 * e + r, -L, row + 1 + r, t);
+      qc::add_row(G, 9 * e + r, -L, tail + r, t);
       h.push_back(-red.h[9 * e + r]);
     }
-    dims.push_back(10);
-    row += 10;
+    rows.close(rows.head_rows() + 9);
     const Eigen::Matrix3d R = p.target(e);
     const Eigen::Matrix3d J0 = R + Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(j0.data() + 9 * e);
     if (!(J0.determinant() > 0)) continue;
@@ -162,8 +209,9 @@ StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen:
     Eigen::Vector3d sigma;
     proper_svd(J0, U, sigma, V);
     const Eigen::Vector3d c = sigma.cwiseSqrt().cwiseInverse();
-    // S_ab = sum_rc w_rc J_rc, w_rc = c_a c_b (U_ra V_cb + U_rb V_ca) / 2, J = (G_e x - h_e) + R.
-    auto add_entry = [&](int a, int b, double scale) {
+    // S_ab = sum_rc w_rc J_rc, w_rc = c_a c_b (U_ra V_cb + U_rb V_ca) / 2, J =
+    // (G_e x - h_e) + R.
+    auto add_entry = [&](int a, int b, double scale, int row) {
       double offset = 0;
       for (int r = 0; r < 3; ++r)
         for (int col = 0; col < 3; ++col) {
@@ -173,17 +221,17 @@ StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen:
           offset += w * (R(r, col) - red.h[9 * e + 3 * r + col]);
         }
       h.push_back(offset);
-      ++row;
     };
     for (int a = 0; a < 3; ++a) {
-      add_entry(a, a, 1.0);
+      int row = rows.row;
+      add_entry(a, a, 1.0, row++);
       for (int b = 0; b < 3; ++b)
-        if (b != a) add_entry(a, b, std::sqrt(2.0));
-      dims.push_back(3);
+        if (b != a) add_entry(a, b, std::sqrt(2.0), row++);
+      rows.close(3);
     }
   }
-  add_constant_floor(active, d0, n, row, t, h, dims);
-  finish(out, row, t, h, std::move(dims));
+  rows.constant_floor(active, d0);
+  rows.finish(p, out);
   return out;
 }
 
@@ -199,23 +247,38 @@ SolveStatus status_of(qc::SparseSocpStatus s) {
 
 }  // namespace
 
-bool linf_without_new_flips_applies(const Problem& p, const LinfOptions& o) {
-  const bool planar = p.image_dim == 2 && p.domain_dim == 2, tets = p.image_dim == 3 && p.domain_dim == 3;
-  return (planar || tets) && !p.has_equalities() && o.element_bounds.size() == 0;
+bool linf_without_new_flips_applies(const Problem &p, const LinfOptions &o) {
+  return steps_without_new_flips_apply(p) && o.element_bounds.size() == 0;
 }
 
-Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance,
-                              double feasibility_tolerance) {
+bool steps_without_new_flips_apply(const Problem &p) {
+  const bool planar = p.image_dim == 2 && p.domain_dim == 2, tets = p.image_dim == 3 && p.domain_dim == 3;
+  return (planar || tets) && !p.has_equalities();
+}
+
+double weighted_energy(const Problem &p, const Eigen::VectorXd &distortion) {
+  const double total = p.weights.sum();
+  return total > 0 ? p.weights.dot(distortion.cwiseAbs2()) / total : 0.0;
+}
+
+Result step_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0, StepObjective objective,
+                              double gap_tolerance, double feasibility_tolerance) {
   const auto t0 = std::chrono::steady_clock::now();
+  const bool maximum = objective == StepObjective::Maximum;
   Problem p = problem;
   p.positions = X0;
   const Eigen::VectorXd x0 = p.free_dofs(X0);
   const Eigen::VectorXd d0 = field_deviation(p, X0);
-  const StepProgram step = p.domain_dim == 3 ? build_tets(p, x0, d0) : build_planar(p, x0, d0);
-  // The start: X0 with k at its maximum (the solver lifts the slacks into the cones).
-  Eigen::VectorXd v0(step.num_x + 1);
+  const StepProgram step = p.domain_dim == 3 ? build_tets(p, x0, d0, objective) : build_planar(p, x0, d0, objective);
+  // The start: X0 with k at its maximum, or each t at its element's square (the
+  // solver lifts the slacks into the cones).
+  Eigen::VectorXd v0(step.program.c.size());
   v0.head(step.num_x) = x0 / step.map_scale;
-  v0[step.num_x] = d0.size() ? 1.01 * d0.maxCoeff() + 1e-12 : 0.0;
+  if (maximum)
+    v0[step.num_x] = d0.size() ? 1.01 * d0.maxCoeff() + 1e-12 : 0.0;
+  else
+    for (size_t i = 0; i < step.element.size(); ++i)
+      v0[step.num_x + i] = 1.01 * d0[step.element[i]] * d0[step.element[i]] + 1e-12;
   qc::SparseSocpSettings settings;
   settings.gap_tolerance = gap_tolerance;
   settings.feasibility_tolerance = feasibility_tolerance;
@@ -225,14 +288,17 @@ Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0,
   out.status = status_of(r.status);
   out.iterations = r.iterations;
   const Eigen::MatrixXd X = p.with_free_dofs(r.x.head(step.num_x) * step.map_scale);
-  // The solver's map when it is no worse than the start and adds no flip (it cannot, to
-  // round-off; checked), else the start.
+  // The solver's map when it is no worse than the start for the objective and
+  // adds no flip (it cannot, to round-off; checked), else the start.
   const Eigen::VectorXd d = field_deviation(p, X);
-  const bool better = r.x.allFinite() && d.size() && d.maxCoeff() <= d0.maxCoeff() && flips_added(p, X0, X) == 0;
+  const bool no_worse =
+      maximum ? d.size() && d.maxCoeff() <= d0.maxCoeff() : weighted_energy(p, d) <= weighted_energy(p, d0);
+  const bool better = r.x.allFinite() && no_worse && flips_added(p, X0, X) == 0;
   out.positions = better ? X : X0;
   out.distortion = better ? d : d0;
-  out.lower_bound = r.status == qc::SparseSocpStatus::Converged ? qc::corrected_dual_bound(step.program, r.z, &cache)
-                                                                 : -std::numeric_limits<double>::infinity();
+  out.lower_bound = maximum && r.status == qc::SparseSocpStatus::Converged
+                        ? qc::corrected_dual_bound(step.program, r.z, &cache)
+                        : -std::numeric_limits<double>::infinity();
   out.message = (out.status == SolveStatus::Solved ? "converged" : r.message) +
                 std::string(" (the step inside the orientation-preserving cones, ") + std::to_string(r.iterations) +
                 " interior-point iterations)";
@@ -240,47 +306,60 @@ Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0,
   return out;
 }
 
-void linf_steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd& start, const LinfOptions& options,
-                                  Result& result, int max_steps, double relative_change) {
-  // Each step is one of a sequence around a moving map: its optimum is needed roughly only
-  // (a step that stops short, still lower, is kept; the next one goes on from it).
+Result linf_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0, double gap_tolerance,
+                              double feasibility_tolerance) {
+  return step_without_new_flips(problem, X0, StepObjective::Maximum, gap_tolerance, feasibility_tolerance);
+}
+
+void steps_without_new_flips(const Problem &problem, const Eigen::MatrixXd &start, StepObjective objective,
+                             const LinfOptions &options, Result &result, int max_steps, double relative_change) {
+  // Each step is one of a sequence around a moving map: its optimum is needed
+  // roughly only (a step that stops short, still lower, is kept; the next one
+  // goes on from it).
   constexpr double kStepGap = 1e-2;
   const auto t0 = std::chrono::steady_clock::now();
   const double unconstrained_time = result.time_s;
   if (!result.usable() || flips_added(problem, start, result.positions) == 0) return;
   cut_back_result(problem, start, result);
   const std::string cut = result.message;
+  const bool maximum = objective == StepObjective::Maximum;
+  const char *measured = maximum ? "maximum" : "L2 energy";
+  auto value = [&](const Eigen::VectorXd &d) {
+    return maximum ? (d.size() ? d.maxCoeff() : 0.0) : weighted_energy(problem, d);
+  };
   Eigen::MatrixXd X = result.positions;
-  double max = result.distortion.size() ? result.distortion.maxCoeff() : 0.0;
+  double current = value(result.distortion);
   SolveStatus status = SolveStatus::MaxIterations;
   std::string reason = "the cap of " + std::to_string(max_steps) + " steps";
   int steps = 0;
   double last_change = 1;
   while (steps < max_steps) {
     const double gap = std::max(options.gap_tolerance, std::min(kStepGap, 0.1 * last_change));
-    const Result step = linf_without_new_flips(problem, X, gap, gap);
+    const Result step = step_without_new_flips(problem, X, objective, gap, gap);
     ++steps;
-    const double step_max = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
-    const double change = max > 0 ? (max - step_max) / max : 0.0;
+    const double next = value(step.distortion);
+    const double change = current > 0 ? (current - next) / current : 0.0;
     X = step.positions;
-    max = step_max;
+    current = next;
     last_change = change;
     if (options.progress) {
       IterationRecord rec;
       rec.iteration = steps;
-      rec.max_distortion = max;
-      rec.lower_bound = result.lower_bound;
+      rec.max_distortion = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
+      if (maximum) rec.lower_bound = result.lower_bound;
       rec.relative_change = change;
       rec.time_s = unconstrained_time + seconds_since(t0);
       options.progress(rec);
     }
-    // A step that stopped short but lowered the maximum is kept, and the next one goes on
-    // from it; the steps end when one no longer lowers it (it returns X when it cannot).
+    // A step that stopped short but lowered the objective is kept, and the next
+    // one goes on from it; the steps end when one no longer lowers it (it
+    // returns X when it cannot).
     if (!(change >= relative_change)) {
       const bool converged = step.status == SolveStatus::Solved;
       status = converged ? SolveStatus::Solved : SolveStatus::Stalled;
-      reason = "the maximum changed by " + std::to_string(change) + " (relative, below " +
-               std::to_string(relative_change) + ")" + (converged ? "" : " in a step that stopped short: " + step.message);
+      reason = "the " + std::string(measured) + " changed by " + std::to_string(change) + " (relative, below " +
+               std::to_string(relative_change) + ")" +
+               (converged ? "" : " in a step that stopped short: " + step.message);
       break;
     }
   }
@@ -288,17 +367,21 @@ void linf_steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd&
   result.distortion = field_deviation(problem, X);
   result.status = status;
   result.iterations += steps;
-  result.message = cut + "; then " + std::to_string(steps) +
-                   " L-infinity steps inside the orientation-preserving cones around the map, stopped by " + reason +
-                   " (maximum " + std::to_string(max) + "; the unconstrained optimum's certified bound " +
-                   std::to_string(result.lower_bound) + ")";
+  result.message =
+      cut + "; then " + std::to_string(steps) + (maximum ? " L-infinity" : " L2") +
+      " steps inside the orientation-preserving cones around the map, stopped "
+      "by " +
+      reason + " (maximum " + std::to_string(result.distortion.size() ? result.distortion.maxCoeff() : 0.0) +
+      (maximum ? "; the unconstrained optimum's certified bound " + std::to_string(result.lower_bound) : "") + ")";
   result.time_s = unconstrained_time + seconds_since(t0);
 }
 
-void remove_added_flips(const Problem& problem, const Eigen::MatrixXd& start, bool linf, const LinfOptions& options,
-                        Result& result) {
-  if (linf && linf_without_new_flips_applies(problem, options))
-    linf_steps_without_new_flips(problem, start, options, result);
+void remove_added_flips(const Problem &problem, const Eigen::MatrixXd &start, Method method, const LinfOptions &options,
+                        Result &result) {
+  if (method == Method::Linf && linf_without_new_flips_applies(problem, options))
+    steps_without_new_flips(problem, start, StepObjective::Maximum, options, result);
+  else if (method == Method::L2 && steps_without_new_flips_apply(problem))
+    steps_without_new_flips(problem, start, StepObjective::Energy, options, result);
   else
     cut_back_result(problem, start, result);
 }

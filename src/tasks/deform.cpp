@@ -96,7 +96,7 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
     // One solve: cut it back along the segment from the start (fd is convex: the cut map's
     // maximum is at most the start's) when it adds flips; linf then steps on inside the
     // orientation-preserving cones around the map (no_flips_linf.h).
-    if (options.no_flips) remove_added_flips(out.problem, out.start, solver.method == Method::Linf, solver.linf, out.result);
+    if (options.no_flips) remove_added_flips(out.problem, out.start, solver.method, solver.linf, out.result);
   }
   out.flips_added = flips_added(out.problem, out.start, out.result.positions);
   out.deformed = mesh;

@@ -121,7 +121,7 @@ ParamOutcome parametrize_as_given(const Mesh& mesh, const ParamOptions& options,
     // One solve: cut back along the segment from the initial map when it adds flips (fd is
     // convex, so the cut map's maximum is at most the initial map's); linf then steps on
     // inside the orientation-preserving cones around the map (no_flips_linf.h).
-    if (options.no_flips) remove_added_flips(p, out.initial, solver.method == Method::Linf, solver.linf, out.result);
+    if (options.no_flips) remove_added_flips(p, out.initial, solver.method, solver.linf, out.result);
   } else {
     out.result = local_global(p, out.initial, solver, lg);
   }
