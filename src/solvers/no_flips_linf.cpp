@@ -285,7 +285,9 @@ Result step_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0,
   qc::SparseCholeskyCache cache;
   const qc::SparseSocpOutcome r = qc::solve_sparse_socp(step.program, v0, settings, nullptr, &cache);
   Result out;
-  out.status = status_of(r.status);
+  // The map returned is X0 or a checked improvement on it either way: a cone program that
+  // failed (numerical-error) leaves a usable map, a step that stopped short (stalled).
+  out.status = r.status == qc::SparseSocpStatus::NumericalError ? SolveStatus::Stalled : status_of(r.status);
   out.iterations = r.iterations;
   const Eigen::MatrixXd X = p.with_free_dofs(r.x.head(step.num_x) * step.map_scale);
   // The solver's map when it is no worse than the start for the objective and
