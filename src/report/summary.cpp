@@ -316,6 +316,7 @@ nlohmann::json quad_extraction_summary(const QuadExtraction& x, const QuadExtrac
   s["holes"] = x.holes;
   s["non_manifold_edges"] = x.non_manifold_edges;
   s["non_manifold_vertices"] = x.non_manifold_vertices;
+  s["split_vertices"] = x.split_vertices;
   s["euler_characteristic"] = x.euler_characteristic;
   s["surface_euler_characteristic"] = x.surface_euler_characteristic;
   nlohmann::json valences = nlohmann::json::object();

@@ -336,17 +336,27 @@ QuadMesh assemble(const Mesh& map, const std::vector<Square>& squares, std::vect
   return q;
 }
 
-// The vertices whose quads form more than one fan (groups joined through the quad edges at
-// the vertex): two corners of quads that touch at the vertex alone, as across a pinched hole.
-int count_non_manifold_vertices(const QuadMesh& q) {
+// The quads around each vertex, grouped into fans (joined through the quad edges at the
+// vertex): several fans at a vertex are quads that touch there alone, as across a pinched hole.
+struct VertexFans {
+  std::vector<int> quad;  // per vertex, its quads (CSR by start)
+  std::vector<int> fan;   // the fan of each, 0 .. fans - 1 in order of first appearance
+  std::vector<int> start, fans;
+};
+
+VertexFans vertex_fans(const QuadMesh& q) {
   std::vector<std::array<int, 4>> quads(static_cast<size_t>(q.num_quads()));
   for (int i = 0; i < q.num_quads(); ++i)
     for (int k = 0; k < 4; ++k) quads[static_cast<size_t>(i)][static_cast<size_t>(k)] = q.Q(i, k);
   const QuadsAtCorners at = quads_at_corners(quads, q.num_vertices());
-  int count = 0;
+  VertexFans out;
+  out.quad = at.at;
+  out.start = at.start;
+  out.fan.assign(at.at.size(), 0);
+  out.fans.assign(static_cast<size_t>(q.num_vertices()), 0);
   for (int v = 0; v < q.num_vertices(); ++v) {
-    const std::vector<int> around(at.at.begin() + at.start[static_cast<size_t>(v)],
-                                  at.at.begin() + at.start[static_cast<size_t>(v) + 1]);
+    const int first = at.start[static_cast<size_t>(v)];
+    const std::vector<int> around(at.at.begin() + first, at.at.begin() + at.start[static_cast<size_t>(v) + 1]);
     UnionFind fans(static_cast<int>(around.size()));
     // Per neighbour w of v along a quad edge: the first quad seen with the edge v-w.
     std::unordered_map<int, int> first_with;
@@ -359,11 +369,52 @@ int count_non_manifold_vertices(const QuadMesh& q) {
         if (!added) fans.unite(it->second, static_cast<int>(a));
       }
     }
-    int groups = 0;
-    for (size_t a = 0; a < around.size(); ++a) groups += fans.find(static_cast<int>(a)) == static_cast<int>(a);
-    count += groups > 1;
+    std::unordered_map<int, int> fan_of_root;
+    for (size_t a = 0; a < around.size(); ++a) {
+      const auto [it, added] = fan_of_root.emplace(fans.find(static_cast<int>(a)), static_cast<int>(fan_of_root.size()));
+      out.fan[static_cast<size_t>(first) + a] = it->second;
+    }
+    out.fans[static_cast<size_t>(v)] = static_cast<int>(fan_of_root.size());
   }
-  return count;
+  return out;
+}
+
+int count_non_manifold_vertices(const QuadMesh& q) {
+  const VertexFans f = vertex_fans(q);
+  return static_cast<int>(std::count_if(f.fans.begin(), f.fans.end(), [](int n) { return n > 1; }));
+}
+
+// Gives each fan after the first at a vertex its own copy of the vertex (the same position
+// and surface point), so that a quad mesh with holes pinched at a vertex is a manifold with
+// boundary. Returns the copies added.
+int split_pinched_vertices(QuadMesh& q) {
+  const VertexFans f = vertex_fans(q);
+  const int n = q.num_vertices();
+  std::vector<int> copy_of;  // the original of each copy
+  for (int v = 0; v < n; ++v) {
+    if (f.fans[static_cast<size_t>(v)] < 2) continue;
+    const int first_copy = n + static_cast<int>(copy_of.size());
+    for (int k = 1; k < f.fans[static_cast<size_t>(v)]; ++k) copy_of.push_back(v);
+    for (int a = f.start[static_cast<size_t>(v)]; a < f.start[static_cast<size_t>(v) + 1]; ++a) {
+      const int fan = f.fan[static_cast<size_t>(a)];
+      if (fan == 0) continue;
+      const int i = f.quad[static_cast<size_t>(a)];
+      for (int k = 0; k < 4; ++k)
+        if (q.Q(i, k) == v) q.Q(i, k) = first_copy + fan - 1;
+    }
+  }
+  if (copy_of.empty()) return 0;
+  const int total = n + static_cast<int>(copy_of.size());
+  q.V.conservativeResize(total, Eigen::NoChange);
+  q.vertex_face.conservativeResize(total);
+  q.vertex_barycentric.conservativeResize(total, Eigen::NoChange);
+  for (size_t c = 0; c < copy_of.size(); ++c) {
+    const int row = n + static_cast<int>(c);
+    q.V.row(row) = q.V.row(copy_of[c]);
+    q.vertex_face(row) = q.vertex_face(copy_of[c]);
+    q.vertex_barycentric.row(row) = q.vertex_barycentric.row(copy_of[c]);
+  }
+  return static_cast<int>(copy_of.size());
 }
 
 // Edges, boundary, manifoldness, holes, Euler characteristic and valences of the quad mesh.
@@ -475,6 +526,7 @@ QuadExtraction extract_quads(const Mesh& map, const QuadExtractionOptions& optio
     x.filled_holes = filling.filled_holes;
     x.filled_squares = filling.filled_squares;
   }
+  x.split_vertices = split_pinched_vertices(x.mesh);
   check_topology(x);
   x.quality = quad_quality(x.mesh);
   // Closed, manifold, the surface's topology, one quad per unit of UV area, and no square left

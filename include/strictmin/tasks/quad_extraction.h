@@ -89,7 +89,11 @@ struct QuadExtraction {
   int boundary_edges = 0;      // quad edges with one quad (around the holes)
   int holes = 0;               // connected groups of boundary edges
   int non_manifold_edges = 0;  // a directed quad edge used twice
-  int non_manifold_vertices = 0;  // vertices whose quads form several fans (touching at the vertex alone)
+  // Vertices whose quads form several fans (touching at the vertex alone, as across a pinched
+  // hole): each fan after the first gets its own copy of the vertex (split_vertices: the copies
+  // added), so non_manifold_vertices counts what is left, 0.
+  int split_vertices = 0;
+  int non_manifold_vertices = 0;
   int euler_characteristic = 0;          // of the quad mesh
   int surface_euler_characteristic = 0;  // of the input surface
   std::map<int, int> valences;           // valence -> how many vertices
