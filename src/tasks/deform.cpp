@@ -10,7 +10,7 @@
 #include "strictmin/problem/surface_deformation.h"
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/no_flips.h"
-#include "solvers/no_flips_linf.h"
+#include "tasks/no_new_flips.h"
 #include "strictmin/tasks/conformal_method.h"
 #include "strictmin/tasks/deform_start.h"
 
@@ -92,11 +92,10 @@ DeformOutcome deform(const Mesh& mesh, const std::vector<Handle>& handles, const
     out.start = out.problem.positions;
     SolverOptions solver = options.solver;
     solver.relax.no_flips = solver.relax.no_flips || options.no_flips;
-    out.result = run_method(out.problem, solver);
-    // One solve: cut it back along the segment from the start (fd is convex: the cut map's
-    // maximum is at most the start's) when it adds flips; linf then steps on inside the
-    // orientation-preserving cones around the map (no_flips_linf.h).
-    if (options.no_flips) remove_added_flips(out.problem, out.start, solver.method, solver.linf, out.result);
+    // One solve, under --no-flips stepped or cut back to add no flip to the start (fd is
+    // convex: a cut map's maximum is at most the start's; tasks/no_new_flips.h).
+    out.result = options.no_flips ? run_method_without_new_flips(out.problem, out.start, solver)
+                                  : run_method(out.problem, solver);
   }
   out.flips_added = flips_added(out.problem, out.start, out.result.positions);
   out.deformed = mesh;

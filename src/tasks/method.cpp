@@ -7,6 +7,7 @@
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/l2.h"
 #include "../solvers/option_check.h"
+#include "tasks/no_new_flips.h"
 
 namespace strictmin {
 namespace {
@@ -93,16 +94,7 @@ Result run_method(const Problem& p, const SolverOptions& o) {
       if (o.relax_init == Method::Relax) throw InputError("relax cannot start from relax (--init l2|lp|irls|linf)");
       SolverOptions init = o;
       init.method = o.relax_init;
-      const Result start = run_method(p, init);
-      if (!start.usable()) return start;
-      Result r = relax(p, start.positions, o.relax);
-      r.time_s += start.time_s;
-      r.lower_bound = start.lower_bound;
-      if (!start.ok()) {  // the start's shortfall stays visible
-        r.status = worse_status(r.status, start.status);
-        r.message = "initial " + method_name(o.relax_init) + ": " + start.message + "; " + r.message;
-      }
-      return r;
+      return relax_after(p, o, run_method(p, init));
     }
   }
   return solve_l2(p);

@@ -10,7 +10,7 @@
 #include "strictmin/report/stats.h"
 #include "strictmin/tasks/conformal_method.h"
 #include "strictmin/solvers/no_flips.h"
-#include "solvers/no_flips_linf.h"
+#include "tasks/no_new_flips.h"
 #include "tasks/unit_size.h"
 
 namespace strictmin {
@@ -117,11 +117,9 @@ ParamOutcome parametrize_as_given(const Mesh& mesh, const ParamOptions& options,
     out.result = run_conformal_method(p, out.initial, m, options.solver, &out.conformal);
   } else if (m == Measure::FieldDeviation) {
     local_step(p, out.initial, lg);  // the frames: rotations of the initial map
-    out.result = run_method(p, solver);
-    // One solve: cut back along the segment from the initial map when it adds flips (fd is
-    // convex, so the cut map's maximum is at most the initial map's); linf then steps on
-    // inside the orientation-preserving cones around the map (no_flips_linf.h).
-    if (options.no_flips) remove_added_flips(p, out.initial, solver.method, solver.linf, out.result);
+    // One solve, under --no-flips stepped or cut back to add no flip to the initial map
+    // (tasks/no_new_flips.h).
+    out.result = options.no_flips ? run_method_without_new_flips(p, out.initial, solver) : run_method(p, solver);
   } else {
     out.result = local_global(p, out.initial, solver, lg);
   }
