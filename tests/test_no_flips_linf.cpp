@@ -59,81 +59,51 @@ int flipped(const Problem& p, const Eigen::MatrixXd& X) {
 
 }  // namespace
 
-// Ends turned by 0.6 rad, not moved: from the L2 map, the unconstrained optimum adds no flip,
-// so the cones do not bind and both programs have the same optimum (each to a gap of 1e-8).
+// Ends turned by 0.6 rad (tets: 0.4 rad about the bar's axis), not moved: from the L2 map,
+// the unconstrained optimum adds no flip, so the cones (Lipman's; on tets the diagonally
+// dominant ones) do not bind and both programs have the same optimum (each to a gap of 1e-8).
 TEST(NoFlipsLinf, SameOptimumWhereTheConesDoNotBind) {
-  Problem p = bar(0.6, 0.0);
-  const Eigen::MatrixXd X0 = solve_l2(p).positions;
-  ASSERT_EQ(flipped(p, X0), 0);
-  p.positions = X0;
-  const Result free_step = solve_linf(p, {});
-  ASSERT_EQ(free_step.status, SolveStatus::Solved) << free_step.message;
-  ASSERT_EQ(flips_added(p, X0, free_step.positions), 0);
-  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
-  ASSERT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
-  const double k_free = free_step.distortion.maxCoeff(), k_cone = cone_step.distortion.maxCoeff();
-  EXPECT_NEAR(k_cone, k_free, 1e-6 * k_free);
-  EXPECT_LE(cone_step.lower_bound, k_cone * (1 + 1e-9));
-  EXPECT_GE(cone_step.lower_bound, k_free * (1 - 1e-6));
-  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
-  std::printf("free %.10f, cones %.10f (bound %.10f, %d iterations)\n", k_free, k_cone, cone_step.lower_bound,
-              cone_step.iterations);
+  for (const bool tets : {false, true}) {
+    Problem p = tets ? tet_bar(0.4, 0.0) : bar(0.6, 0.0);
+    const Eigen::MatrixXd X0 = solve_l2(p).positions;
+    ASSERT_EQ(flipped(p, X0), 0);
+    p.positions = X0;
+    const Result free_step = solve_linf(p, {});
+    ASSERT_EQ(free_step.status, SolveStatus::Solved) << free_step.message;
+    ASSERT_EQ(flips_added(p, X0, free_step.positions), 0);
+    const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+    ASSERT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
+    const double k_free = free_step.distortion.maxCoeff(), k_cone = cone_step.distortion.maxCoeff();
+    EXPECT_NEAR(k_cone, k_free, 1e-6 * k_free);
+    EXPECT_LE(cone_step.lower_bound, k_cone * (1 + 1e-9));
+    EXPECT_GE(cone_step.lower_bound, k_free * (1 - 1e-6));
+    EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+    std::printf("%s: free %.10f, cones %.10f (bound %.10f, %d iterations)\n", tets ? "tets" : "planar", k_free,
+                k_cone, cone_step.lower_bound, cone_step.iterations);
+  }
 }
 
-// Ends squeezed to a third of the bar and turned inwards by 1.6 rad: the L-infinity optimum
-// from the L2 map flips elements that the cone step keeps positive; its maximum is no lower
-// than the unconstrained optimum and no higher than the start's.
+// Ends squeezed to a third of the bar and turned inwards by 1.6 rad (tets: twisted about the
+// axis): the L-infinity optimum from the L2 map flips elements that the cone step keeps
+// positive; its maximum is no lower than the unconstrained optimum and no higher than the
+// start's.
 TEST(NoFlipsLinf, NoFlipAddedWhereTheConesBind) {
-  Problem p = bar(1.6, 2.0);
-  const Eigen::MatrixXd X0 = solve_l2(p).positions;
-  p.positions = X0;
-  const Result free_step = solve_linf(p, {});
-  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
-  std::printf("start: %d flipped, max %.6g; free: max %.6g, %d added; cones: max %.6g, %d added (%s)\n", flipped(p, X0),
-              field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
-              flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
-              flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
-  ASSERT_GT(flips_added(p, X0, free_step.positions), 0) << "the case must make the cones bind";
-  EXPECT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
-  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
-  EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
-  EXPECT_LE(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
-}
-
-// Tets (the diagonally dominant cones): a quarter twist from the L2 map adds no flip, so the
-// cone step reaches the field deviation solver's optimum (each to a gap of 1e-8).
-TEST(NoFlipsLinf, TetsSameOptimumWhereTheConesDoNotBind) {
-  Problem p = tet_bar(0.4, 0.0);
-  const Eigen::MatrixXd X0 = solve_l2(p).positions;
-  ASSERT_EQ(flipped(p, X0), 0);
-  p.positions = X0;
-  const Result free_step = solve_linf(p, {});
-  ASSERT_EQ(free_step.status, SolveStatus::Solved) << free_step.message;
-  ASSERT_EQ(flips_added(p, X0, free_step.positions), 0);
-  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
-  ASSERT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
-  const double k_free = free_step.distortion.maxCoeff(), k_cone = cone_step.distortion.maxCoeff();
-  EXPECT_NEAR(k_cone, k_free, 1e-6 * k_free);
-  EXPECT_GE(cone_step.lower_bound, k_free * (1 - 1e-6));
-  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
-}
-
-// Tets squeezed to a third and twisted by 1.6 rad each way: the unconstrained optimum from
-// the L2 map flips tets, the cone step none, at a maximum between the two.
-TEST(NoFlipsLinf, TetsNoFlipAddedWhereTheConesBind) {
-  Problem p = tet_bar(1.6, 2.0);
-  const Eigen::MatrixXd X0 = solve_l2(p).positions;
-  p.positions = X0;
-  const Result free_step = solve_linf(p, {});
-  const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
-  std::printf("start: %d flipped, max %.6g; free: max %.6g, %d added; cones: max %.6g, %d added (%s)\n",
-              flipped(p, X0), field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
-              flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
-              flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
-  ASSERT_GT(flips_added(p, X0, free_step.positions), 0) << "the case must make the cones bind";
-  EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
-  EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
-  EXPECT_LT(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
+  for (const bool tets : {false, true}) {
+    Problem p = tets ? tet_bar(1.6, 2.0) : bar(1.6, 2.0);
+    const Eigen::MatrixXd X0 = solve_l2(p).positions;
+    p.positions = X0;
+    const Result free_step = solve_linf(p, {});
+    const Result cone_step = linf_without_new_flips(p, X0, 1e-8);
+    std::printf("start: %d flipped, max %.6g; free: max %.6g, %d added; cones: max %.6g, %d added (%s)\n",
+                flipped(p, X0), field_deviation(p, X0).maxCoeff(), free_step.distortion.maxCoeff(),
+                flips_added(p, X0, free_step.positions), cone_step.distortion.maxCoeff(),
+                flips_added(p, X0, cone_step.positions), cone_step.message.c_str());
+    ASSERT_GT(flips_added(p, X0, free_step.positions), 0) << "the case must make the cones bind";
+    EXPECT_EQ(cone_step.status, SolveStatus::Solved) << cone_step.message;
+    EXPECT_EQ(flips_added(p, X0, cone_step.positions), 0);
+    EXPECT_GE(cone_step.distortion.maxCoeff(), free_step.distortion.maxCoeff() * (1 - 1e-8));
+    EXPECT_LT(cone_step.distortion.maxCoeff(), field_deviation(p, X0).maxCoeff());
+  }
 }
 
 // deform --no-flips with fd and linf, from the rest pose with the handles moved (planar and
