@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "common.h"
 #include "report_output.h"
+#include "io/text_parse.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/io/mesh_io.h"
 #include "strictmin/tasks/map_distortion.h"
@@ -14,6 +15,7 @@ namespace {
 struct EvalArgs {
   std::string rest, mapped, measure = "auto", output;
   double uv_scale = 1;  // the UVs are multiplied by it (gparam's OBJ: the map / its edge length)
+  bool uv_scale_given = false;
   OutputOptions out;
   ReportArgs report;
 };
@@ -79,11 +81,14 @@ int run_eval(const EvalArgs& a) {
     mapped = read_mesh(a.mapped, &warnings, image);
   }
   for (const auto& w : warnings) progress(a.out, "warning: " + w);
-  if (a.uv_scale != 1) {
+  if (a.uv_scale_given) {
     if (!mapped.has_uv())
       throw InputError("--uv-scale: " + (a.mapped.empty() ? a.rest : a.mapped) +
                        " has no texture coordinates (vt) to scale");
     mapped.UV *= a.uv_scale;
+    if (!mapped.UV.allFinite() || mapped.UV.cwiseAbs().maxCoeff() > 1e150)
+      throw InputError("--uv-scale " + io_detail::exact_text(a.uv_scale) + ": the texture coordinates times it are " +
+                       "beyond 1e150 (strictmin takes sizes up to 1e150)");
   } else if (mapped.has_uv() && mapped.UV.rows() != mapped.num_vertices() && a.measure != "qc" && a.measure != "iso") {
     // A seamed (per-corner) layout is most likely gparam's, whose vt are in grid units.
     progress(a.out, "warning: " + (a.mapped.empty() ? a.rest : a.mapped) +
@@ -150,7 +155,7 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--measure", args->measure,
                   "fd, arap, asap, qc or iso; auto = arap for parametrizations, fd for deformations")
       ->capture_default_str();
-  cmd->add_option("--uv-scale", args->uv_scale,
+  const CLI::Option* uv_scale = cmd->add_option("--uv-scale", args->uv_scale,
                   "Multiply the texture coordinates by this before measuring (> 0). gparam's OBJ holds the map "
                   "divided by its edge length: give the summary's edge_length to measure what gparam measured")
       ->check(greater_than(0))
@@ -158,7 +163,10 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--output", args->output, "Write the mesh with per-element distortion (.ply: 'quality')");
   add_output_options(*cmd, args->out);
   add_report_options(*cmd, args->report);
-  cmd->callback([args, &exit_code] { exit_code = run_eval(*args); });
+  cmd->callback([args, uv_scale, &exit_code] {
+    args->uv_scale_given = uv_scale->count() > 0;
+    exit_code = run_eval(*args);
+  });
 }
 
 }  // namespace strictmin::cli

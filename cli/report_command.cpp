@@ -189,8 +189,8 @@ void check_summary_words(const nlohmann::json& s, const std::string& file) {
   }
   // The verdicts tie direct's values within it: a bad one would decide them.
   if (s.contains("delta_k") && !(s["delta_k"].is_number() && s["delta_k"].get<double>() > 0 &&
-                                 s["delta_k"].get<double>() < 1))
-    throw InputError(file + ": delta_k " + s["delta_k"].dump() + " is not a number in (0, 1)");
+                                 std::isfinite(s["delta_k"].get<double>())))
+    throw InputError(file + ": delta_k " + s["delta_k"].dump() + " is not a positive number (direct's --delta-k)");
 }
 
 // The summary's counts against the map's.
@@ -317,7 +317,10 @@ LoadedRun load_run(const std::string& file, const OutputOptions& out) {
                               "task's frames) cannot be recomputed from the map: run the task with --distortion FILE");
     if (!mapped.has_uv()) mapped = to_planar(mapped);
     // gparam's OBJ holds the map divided by its edge length h (UV in grid units); its
-    // distortion is the map's against unit targets, so the UVs are scaled back by h.
+    // distortion is the map's against unit targets, so the UVs are scaled back by h. eval
+    // measured its map's UVs times its --uv-scale.
+    if (text("task") == "eval" && std::isfinite(number("uv_scale")) && number("uv_scale") > 0 && mapped.has_uv())
+      mapped.UV *= number("uv_scale");
     if (text("task") == "gparam") {
       const double h = number("edge_length");
       if (!(h > 0) || !std::isfinite(h))

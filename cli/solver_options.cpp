@@ -191,7 +191,11 @@ SolverOptions make_solver_options(const SolverArgs& a, const OutputOptions& out,
   o.exact.max_elements = a.exact_max_elements;
   o.frame_iterations = a.frame_iterations;
   if (!out.quiet) {
-    o.linf.progress = [](const IterationRecord& r) { print_iteration("  linf  iter", r); };
+    // (With l2 its only cone programs are --no-flips's steps inside the orientation cones.)
+    if (o.method == Method::L2)
+      o.linf.progress = [](const IterationRecord& r) { print_iteration("  l2 no-flip step", r); };
+    else
+      o.linf.progress = [](const IterationRecord& r) { print_iteration("  linf  iter", r); };
     o.lp.progress = [](const IterationRecord& r) { print_iteration("  lp    iter", r); };
     o.irls.progress = [](const IterationRecord& r) { print_iteration("  irls  iter", r); };
     o.relax.progress = [](const IterationRecord& r) { print_iteration("  relax sweep", r); };

@@ -182,3 +182,24 @@ TEST(NoFlipsLinf, RelaxStartsFromTheSteppedMap) {
     EXPECT_NE(r.message.find("initial linf: "), std::string::npos) << r.message;
   }
 }
+
+// When relax's sweeps from its start method's own (flipped) map turn every flipped element
+// back, that map is taken: the tet bar turned by 2 rad each way ends at linf's certified
+// bound, where the steps inside the cones stop higher.
+TEST(NoFlipsLinf, RelaxSweepsThatLeaveNoFlipAreTaken) {
+  const Problem p = tet_bar(2.0, 0.0);
+  SolverOptions linf;
+  linf.method = Method::Linf;
+  const Result stepped = run_method_without_new_flips(p, p.positions, linf);
+  SolverOptions relax = linf;
+  relax.method = Method::Relax;
+  relax.relax.sweeps = 20;
+  const Result r = run_method_without_new_flips(p, p.positions, relax);
+  std::printf("linf steps %.6g, relax %.6g, bound %.6g\n", stepped.distortion.maxCoeff(), r.distortion.maxCoeff(),
+              r.lower_bound);
+  EXPECT_NE(r.message.find("no flip left by the sweeps from the start method's map"), std::string::npos) << r.message;
+  EXPECT_EQ(flips_added(p, p.positions, r.positions), 0);
+  EXPECT_EQ(r.status, SolveStatus::Solved) << r.message;
+  EXPECT_LE(r.distortion.maxCoeff(), stepped.distortion.maxCoeff() * (1 + 1e-9));
+  EXPECT_LE(r.distortion.maxCoeff(), r.lower_bound * (1 + 1e-6));
+}

@@ -191,7 +191,8 @@ void wire_progress(TaskOptions& o, PyObject* callback) {
       function(record_dict(r, stage));
     };
   };
-  o.solver.linf.progress = records("linf");
+  // (With l2 its only cone programs are no_flips's steps inside the orientation cones.)
+  o.solver.linf.progress = records(o.solver.method == Method::L2 ? "l2-no-flip-steps" : "linf");
   o.solver.lp.progress = records("lp");
   o.solver.irls.progress = records("irls");
   o.solver.relax.progress = records("relax");

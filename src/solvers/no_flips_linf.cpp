@@ -344,15 +344,15 @@ void steps_without_new_flips(const Problem &problem, const Eigen::MatrixXd &star
     X = step.positions;
     current = next;
     last_change = change;
-    if (options.progress) {
-      IterationRecord rec;
-      rec.iteration = steps;
-      rec.max_distortion = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
-      if (maximum) rec.lower_bound = result.lower_bound;
-      rec.relative_change = change;
-      rec.time_s = unconstrained_time + seconds_since(t0);
-      options.progress(rec);
-    }
+    IterationRecord rec;
+    rec.iteration = steps;
+    rec.max_distortion = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
+    if (maximum) rec.lower_bound = result.lower_bound;
+    rec.relative_change = change;
+    rec.inner_iterations = step.iterations;
+    rec.time_s = unconstrained_time + seconds_since(t0);
+    result.history.push_back(rec);
+    if (options.progress) options.progress(rec);
     // A step that stopped short but lowered the objective is kept, and the next
     // one goes on from it; the steps end when one no longer lowers it (it
     // returns X when it cannot).

@@ -66,6 +66,14 @@ std::string init_name(ParamInit i) { return i == ParamInit::Tutte ? "tutte" : "l
 // disk with coordinates about 1e55 stopped on "gradients are not finite", one about 1e-55
 // ended numerical-error with a maximum of 7e83).
 ParamOutcome parametrize(const Mesh& mesh, const ParamOptions& options, const std::string& source) {
+  // The starting map itself is returned as computed: no solve to keep from flipping (LSCM's
+  // map may flip triangles, and the summary said no_flips all the same).
+  if (options.init_only && options.no_flips)
+    throw InputError(std::string("--no-flips applies to a solve, and --method ") +
+                     (options.init == ParamInit::Tutte ? "tutte" : "lscm") +
+                     " returns the starting map itself (Tutte's has no flip; LSCM's may): drop --no-flips, or "
+                     "solve from it (--method l2|linf|... --init " +
+                     (options.init == ParamInit::Tutte ? "tutte" : "lscm") + ")");
   const double scale = unit_size_scale(mesh);
   if (scale == 1) return parametrize_as_given(mesh, options, source);
   ParamOptions scaled_options = options;

@@ -130,10 +130,18 @@ class GParam(CubeCase):
         e = json.loads(p.stdout)
         self.assertLess(abs(e["max_distortion"] - g["max_distortion"]), 1e-9)
         self.assertEqual(e["uv_scale"], 0.25)
+        # report recomputes that summary's distortion at its uv_scale (it refused it as
+        # disagreeing with its own map, 4.24 against 0).
+        run("eval", self.cube, self.out("a.obj"), "--uv-scale", "0.25", "--summary", self.out("e.json"), "-q",
+            check_code=0)
+        run("report", self.out("r"), self.out("e.json"), "-q", check_code=0)
         for bad, why in (("0", "--uv-scale"), ("nan", "not a finite number")):
             self.assertIn(why, run("eval", self.cube, self.out("a.obj"), "--uv-scale", bad, check_code=1).stderr)
-        p = run("eval", self.cube, self.cube, "--uv-scale", "2", check_code=1)
-        self.assertIn("has no texture coordinates (vt) to scale", p.stderr)
+        for given in ("2", "1"):  # (1 was taken without a word)
+            p = run("eval", self.cube, self.cube, "--uv-scale", given, check_code=1)
+            self.assertIn("has no texture coordinates (vt) to scale", p.stderr)
+        p = run("eval", self.cube, self.out("a.obj"), "--uv-scale", "1e300", check_code=1)
+        self.assertIn("--uv-scale 1e+300: the texture coordinates times it are beyond 1e150", p.stderr)
 
     def test_surfaces_with_boundary(self):
         """A cube with one grid cell cut out of a side (a square hole: its corners are -1/4 on

@@ -103,6 +103,11 @@ class Param(unittest.TestCase):
         self.assertEqual((s["init"], s["relax_init"]), ("lscm", "linf"))
         s = json.loads(run("param", self.cap, "--method", "tutte", "--summary", "-", "--quiet", check_code=0).stdout)
         self.assertIn("Tutte", s["stop_reason"])
+        # --no-flips with the starting map itself: no solve to constrain (LSCM's map kept its
+        # flips and the summary said no_flips: true).
+        for method in ("tutte", "lscm"):
+            p = run("param", self.cap, "--method", method, "--no-flips", check_code=1)
+            self.assertIn(f"--no-flips applies to a solve, and --method {method} returns the starting map", p.stderr)
 
     def test_closed_mesh_is_rejected(self):
         p = run("param", self.path("tet.obj", TETRA), "-o", os.path.join(self.dir, "x.obj"), check_code=1)

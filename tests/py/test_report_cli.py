@@ -273,7 +273,7 @@ class Report(unittest.TestCase):
                                    ("task", "banana", 'unknown task "banana"'),
                                    ("status", "weird", 'unknown status "weird"'),
                                    # it ties direct's values in the verdicts
-                                   ("delta_k", -1, "delta_k -1 is not a number in (0, 1)"),
+                                   ("delta_k", -1, "delta_k -1 is not a positive number"),
                                    # another map's input (it was filed under the input's section,
                                    # with the warning "input mesh not found")
                                    ("input", "example:bar", "they are not one map's rest and image")):
