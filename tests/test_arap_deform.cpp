@@ -252,7 +252,7 @@ TEST(NoFlips, CutBackLocalGlobalFromTutte) {
   ASSERT_GE(r.result.history.size(), 2u) << r.result.message;
   for (size_t i = 1; i < r.result.history.size(); ++i)
     EXPECT_LE(r.result.history[i].max_distortion, r.result.history[i - 1].max_distortion * (1 + 1e-9));
-  // The linf steps stay inside the orientation-preserving cones (solvers/no_flips_linf.h):
+  // The linf steps stay inside the orientation-preserving cones (solvers/no_flips_step.h):
   // 0.996 after 3 steps (measured); cutting each step back instead stalled at 19.3.
   EXPECT_LT(r.measured.stats.max, 1.1) << r.result.message;
   std::printf("dragon, every step constrained: max %.6g after %d steps (%s)\n", r.measured.stats.max,

@@ -1,4 +1,4 @@
-// The linf global step inside the orientation-preserving cones (solvers/no_flips_linf.h),
+// The linf global step inside the orientation-preserving cones (solvers/no_flips_step.h),
 // against the field-deviation L-infinity solver (an independent program and solver): where
 // the cones do not bind, the same optimum; where they do, no better, and no flip added.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include "strictmin/solvers/l2.h"
 #include "strictmin/solvers/linf.h"
 #include "strictmin/solvers/no_flips.h"
-#include "solvers/no_flips_linf.h"
+#include "solvers/no_flips_step.h"
 #include "tasks/no_new_flips.h"
 
 using namespace strictmin;

@@ -326,7 +326,7 @@ TEST(Param, TheVertexNumberingChangesNothing) {
 }
 
 // l2 --no-flips: each global step is the least L2 energy inside the orientation-preserving
-// cones around the map (no_flips_linf.h). Cutting the plain steps back instead stalled near
+// cones around the map (no_flips_step.h). Cutting the plain steps back instead stalled near
 // Tutte's map (fish 26.09 -> 25.79, against 5.53 without the constraint). On bimba_1k the
 // unconstrained map flips 150 triangles at RMS 0.7302; with the cones 0 flips at 0.7363
 // (measured), and l2's own criterion is met.

@@ -1,5 +1,5 @@
 #include "global_step.h"
-#include "no_flips_linf.h"
+#include "no_flips_step.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap, double 
     return r;
   }
   // l2 under --no-flips: the least energy inside the orientation-preserving cones around X
-  // (no_flips_linf.h), where cutting the plain step back stalled (fish from Tutte: 26.09 ->
+  // (no_flips_step.h), where cutting the plain step back stalled (fish from Tutte: 26.09 ->
   // 25.79, against 5.53 without the constraint).
   if (l2_ && constrained_steps_ && steps_without_new_flips_apply(p))
     return step_without_new_flips(p, X, StepObjective::Energy, kEnergyStepGap);

@@ -20,7 +20,7 @@ class GlobalStep {
   // relax: one sweep per step (its rings in the kernel when no_flips); l2: one
   // factorization for every step; the other methods: a solve from the current map.
   // constrained_steps: linf and l2 steps on planar maps and tets stay inside the
-  // orientation-preserving cones around the current map (no_flips_linf.h; local-global's own
+  // orientation-preserving cones around the current map (no_flips_step.h; local-global's own
   // no_flips, not relax's);
   // warm_start: linf steps start from the previous step's dual (linf_warm_start.h).
   GlobalStep(const Problem& problem, const SolverOptions& solver, bool no_flips, bool constrained_steps,

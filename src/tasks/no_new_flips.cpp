@@ -1,11 +1,92 @@
 #include "tasks/no_new_flips.h"
 
-#include "solvers/no_flips_linf.h"
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "solvers/no_flips_step.h"
+#include "strictmin/measures/field_deviation.h"
+#include "strictmin/solvers/timing.h"
 #include "strictmin/io/input_error.h"
 #include "strictmin/solvers/no_flips.h"
 #include "strictmin/solvers/relax.h"
 
 namespace strictmin {
+
+void steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd& start, StepObjective objective,
+                             const LinfOptions& options, Result& result, int max_steps, double relative_change) {
+  // Each step is one of a sequence around a moving map: its optimum is needed
+  // roughly only (a step that stops short, still lower, is kept; the next one
+  // goes on from it).
+  constexpr double kStepGap = 1e-2;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double unconstrained_time = result.time_s;
+  if (!result.usable() || flips_added(problem, start, result.positions) == 0) return;
+  cut_back_result(problem, start, result);
+  const std::string cut = result.message;
+  const bool maximum = objective == StepObjective::Maximum;
+  const char* measured = maximum ? "maximum" : "L2 energy";
+  auto value = [&](const Eigen::VectorXd& d) {
+    return maximum ? (d.size() ? d.maxCoeff() : 0.0) : weighted_energy(problem, d);
+  };
+  Eigen::MatrixXd X = result.positions;
+  double current = value(result.distortion);
+  SolveStatus status = SolveStatus::MaxIterations;
+  std::string reason = "the cap of " + std::to_string(max_steps) + " steps";
+  int steps = 0;
+  double last_change = 1;
+  while (steps < max_steps) {
+    const double gap = std::max(options.gap_tolerance, std::min(kStepGap, 0.1 * last_change));
+    const Result step = step_without_new_flips(problem, X, objective, gap, gap);
+    ++steps;
+    const double next = value(step.distortion);
+    const double change = current > 0 ? (current - next) / current : 0.0;
+    X = step.positions;
+    current = next;
+    last_change = change;
+    IterationRecord rec;
+    rec.iteration = steps;
+    rec.max_distortion = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
+    if (maximum) rec.lower_bound = result.lower_bound;
+    rec.relative_change = change;
+    rec.inner_iterations = step.iterations;
+    rec.time_s = unconstrained_time + seconds_since(t0);
+    result.history.push_back(rec);
+    if (options.progress) options.progress(rec);
+    // A step that stopped short but lowered the objective is kept, and the next
+    // one goes on from it; the steps end when one no longer lowers it (it
+    // returns X when it cannot).
+    if (!(change >= relative_change)) {
+      const bool converged = step.status == SolveStatus::Solved;
+      status = converged ? SolveStatus::Solved : SolveStatus::Stalled;
+      reason = "the " + std::string(measured) + " changed by " + std::to_string(change) + " (relative, below " +
+               std::to_string(relative_change) + ")" +
+               (converged ? "" : " in a step that stopped short: " + step.message);
+      break;
+    }
+  }
+  result.positions = X;
+  result.distortion = field_deviation(problem, X);
+  result.status = status;
+  result.iterations += steps;
+  result.message =
+      cut + "; then " + std::to_string(steps) + (maximum ? " L-infinity" : " L2") +
+      " steps inside the orientation-preserving cones around the map, stopped "
+      "by " +
+      reason + " (maximum " + std::to_string(result.distortion.size() ? result.distortion.maxCoeff() : 0.0) +
+      (maximum ? "; the unconstrained optimum's certified bound " + std::to_string(result.lower_bound) : "") + ")";
+  result.time_s = unconstrained_time + seconds_since(t0);
+}
+
+void remove_added_flips(const Problem& problem, const Eigen::MatrixXd& start, Method method, const LinfOptions& options,
+                        Result& result) {
+  if (method == Method::Linf && linf_without_new_flips_applies(problem, options))
+    steps_without_new_flips(problem, start, StepObjective::Maximum, options, result);
+  else if (method == Method::L2 && steps_without_new_flips_apply(problem))
+    steps_without_new_flips(problem, start, StepObjective::Energy, options, result);
+  else
+    cut_back_result(problem, start, result);
+}
 
 Result relax_after(const Problem& p, const SolverOptions& o, const Result& start) {
   if (!start.usable()) return start;

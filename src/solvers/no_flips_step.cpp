@@ -1,4 +1,4 @@
-#include "solvers/no_flips_linf.h"
+#include "solvers/no_flips_step.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -60,7 +60,7 @@ class Rows {
   // Maximum: k >= the constant elements' distortion (elements without a free
   // vertex, active[e] == 0; d0 holds every element's at the start), when there
   // are any. (They are constant terms of the energy.)
-  void constant_floor(const std::vector<char> &active, const Eigen::VectorXd &d0) {
+  void constant_floor(const std::vector<char>& active, const Eigen::VectorXd& d0) {
     if (objective_ != StepObjective::Maximum) return;
     double constant = 0;
     bool any_constant = false;
@@ -72,7 +72,7 @@ class Rows {
     close(1);
   }
   // The program: minimize k, or sum_T w_T t_T / sum_T w_T.
-  void finish(const Problem &p, StepProgram &out) {
+  void finish(const Problem& p, StepProgram& out) {
     const int columns = n_ + (objective_ == StepObjective::Maximum ? 1 : static_cast<int>(element.size()));
     out.program.G.resize(row, columns);
     out.program.G.setFromTriplets(t.begin(), t.end());
@@ -103,7 +103,7 @@ class Rows {
 
 // Planar maps (docs/arap.md): Lipman's cone in the conformal parts. d0: the
 // field deviation of every element at the start.
-StepProgram build_planar(const Problem &p, const Eigen::VectorXd &x0, const Eigen::VectorXd &d0,
+StepProgram build_planar(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0,
                          StepObjective objective) {
   const qc::ConformalParts parts = qc::conformal_parts(p);
   const int E = parts.count(), n = parts.num_x;
@@ -112,8 +112,8 @@ StepProgram build_planar(const Problem &p, const Eigen::VectorXd &x0, const Eige
   out.num_x = n;
   out.map_scale = L;
   Rows rows(objective, n);
-  auto &t = rows.t;
-  auto &h = rows.h;
+  auto& t = rows.t;
+  auto& h = rows.h;
   Eigen::VectorXd a, b;
   qc::evaluate_ab(parts, x0, a, b);
   const double root2 = std::sqrt(2.0);
@@ -158,7 +158,7 @@ StepProgram build_planar(const Problem &p, const Eigen::VectorXd &x0, const Eige
 // and U = J V diag(sigma)^-1, so J = U diag(sigma) V^T with det U > 0. (The
 // cones need only det U det V > 0 to keep det J >= 0, and U^T J V close to
 // diag(sigma) for X0 to lie well inside them: round-off in U is harmless.)
-void proper_svd(const Eigen::Matrix3d &J, Eigen::Matrix3d &U, Eigen::Vector3d &sigma, Eigen::Matrix3d &V) {
+void proper_svd(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& sigma, Eigen::Matrix3d& V) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(J.transpose() * J);
   V = eig.eigenvectors();
   if (V.determinant() < 0) V.col(0) *= -1;
@@ -175,7 +175,7 @@ void proper_svd(const Eigen::Matrix3d &J, Eigen::Matrix3d &U, Eigen::Vector3d &s
 // so S is positive semidefinite, the eigenvalues of U^T J V have non-negative
 // real parts, and det J = det(U^T J V) >= 0 (> 0 inside the cones). At X0, S =
 // I: strictly inside.
-StepProgram build_tets(const Problem &p, const Eigen::VectorXd &x0, const Eigen::VectorXd &d0,
+StepProgram build_tets(const Problem& p, const Eigen::VectorXd& x0, const Eigen::VectorXd& d0,
                        StepObjective objective) {
   const Problem::Reduced red = p.reduced();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> G = red.G;
@@ -188,8 +188,8 @@ StepProgram build_tets(const Problem &p, const Eigen::VectorXd &x0, const Eigen:
   const double L = out.map_scale;
   const Eigen::VectorXd j0 = G * x0 - red.h;  // vec(J - R) at x0
   Rows rows(objective, n);
-  auto &t = rows.t;
-  auto &h = rows.h;
+  auto& t = rows.t;
+  auto& h = rows.h;
   std::vector<char> active(E, 0);
   for (int e = 0; e < E; ++e) {
     for (int r = 0; r < 9; ++r)
@@ -247,21 +247,21 @@ SolveStatus status_of(qc::SparseSocpStatus s) {
 
 }  // namespace
 
-bool linf_without_new_flips_applies(const Problem &p, const LinfOptions &o) {
+bool linf_without_new_flips_applies(const Problem& p, const LinfOptions& o) {
   return steps_without_new_flips_apply(p) && o.element_bounds.size() == 0;
 }
 
-bool steps_without_new_flips_apply(const Problem &p) {
+bool steps_without_new_flips_apply(const Problem& p) {
   const bool planar = p.image_dim == 2 && p.domain_dim == 2, tets = p.image_dim == 3 && p.domain_dim == 3;
   return (planar || tets) && !p.has_equalities();
 }
 
-double weighted_energy(const Problem &p, const Eigen::VectorXd &distortion) {
+double weighted_energy(const Problem& p, const Eigen::VectorXd& distortion) {
   const double total = p.weights.sum();
   return total > 0 ? p.weights.dot(distortion.cwiseAbs2()) / total : 0.0;
 }
 
-Result step_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0, StepObjective objective,
+Result step_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, StepObjective objective,
                               double gap_tolerance, double feasibility_tolerance) {
   const auto t0 = std::chrono::steady_clock::now();
   const bool maximum = objective == StepObjective::Maximum;
@@ -308,84 +308,9 @@ Result step_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0,
   return out;
 }
 
-Result linf_without_new_flips(const Problem &problem, const Eigen::MatrixXd &X0, double gap_tolerance,
+Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance,
                               double feasibility_tolerance) {
   return step_without_new_flips(problem, X0, StepObjective::Maximum, gap_tolerance, feasibility_tolerance);
-}
-
-void steps_without_new_flips(const Problem &problem, const Eigen::MatrixXd &start, StepObjective objective,
-                             const LinfOptions &options, Result &result, int max_steps, double relative_change) {
-  // Each step is one of a sequence around a moving map: its optimum is needed
-  // roughly only (a step that stops short, still lower, is kept; the next one
-  // goes on from it).
-  constexpr double kStepGap = 1e-2;
-  const auto t0 = std::chrono::steady_clock::now();
-  const double unconstrained_time = result.time_s;
-  if (!result.usable() || flips_added(problem, start, result.positions) == 0) return;
-  cut_back_result(problem, start, result);
-  const std::string cut = result.message;
-  const bool maximum = objective == StepObjective::Maximum;
-  const char *measured = maximum ? "maximum" : "L2 energy";
-  auto value = [&](const Eigen::VectorXd &d) {
-    return maximum ? (d.size() ? d.maxCoeff() : 0.0) : weighted_energy(problem, d);
-  };
-  Eigen::MatrixXd X = result.positions;
-  double current = value(result.distortion);
-  SolveStatus status = SolveStatus::MaxIterations;
-  std::string reason = "the cap of " + std::to_string(max_steps) + " steps";
-  int steps = 0;
-  double last_change = 1;
-  while (steps < max_steps) {
-    const double gap = std::max(options.gap_tolerance, std::min(kStepGap, 0.1 * last_change));
-    const Result step = step_without_new_flips(problem, X, objective, gap, gap);
-    ++steps;
-    const double next = value(step.distortion);
-    const double change = current > 0 ? (current - next) / current : 0.0;
-    X = step.positions;
-    current = next;
-    last_change = change;
-    IterationRecord rec;
-    rec.iteration = steps;
-    rec.max_distortion = step.distortion.size() ? step.distortion.maxCoeff() : 0.0;
-    if (maximum) rec.lower_bound = result.lower_bound;
-    rec.relative_change = change;
-    rec.inner_iterations = step.iterations;
-    rec.time_s = unconstrained_time + seconds_since(t0);
-    result.history.push_back(rec);
-    if (options.progress) options.progress(rec);
-    // A step that stopped short but lowered the objective is kept, and the next
-    // one goes on from it; the steps end when one no longer lowers it (it
-    // returns X when it cannot).
-    if (!(change >= relative_change)) {
-      const bool converged = step.status == SolveStatus::Solved;
-      status = converged ? SolveStatus::Solved : SolveStatus::Stalled;
-      reason = "the " + std::string(measured) + " changed by " + std::to_string(change) + " (relative, below " +
-               std::to_string(relative_change) + ")" +
-               (converged ? "" : " in a step that stopped short: " + step.message);
-      break;
-    }
-  }
-  result.positions = X;
-  result.distortion = field_deviation(problem, X);
-  result.status = status;
-  result.iterations += steps;
-  result.message =
-      cut + "; then " + std::to_string(steps) + (maximum ? " L-infinity" : " L2") +
-      " steps inside the orientation-preserving cones around the map, stopped "
-      "by " +
-      reason + " (maximum " + std::to_string(result.distortion.size() ? result.distortion.maxCoeff() : 0.0) +
-      (maximum ? "; the unconstrained optimum's certified bound " + std::to_string(result.lower_bound) : "") + ")";
-  result.time_s = unconstrained_time + seconds_since(t0);
-}
-
-void remove_added_flips(const Problem &problem, const Eigen::MatrixXd &start, Method method, const LinfOptions &options,
-                        Result &result) {
-  if (method == Method::Linf && linf_without_new_flips_applies(problem, options))
-    steps_without_new_flips(problem, start, StepObjective::Maximum, options, result);
-  else if (method == Method::L2 && steps_without_new_flips_apply(problem))
-    steps_without_new_flips(problem, start, StepObjective::Energy, options, result);
-  else
-    cut_back_result(problem, start, result);
 }
 
 }  // namespace strictmin
