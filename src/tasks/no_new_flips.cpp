@@ -5,19 +5,18 @@
 #include <string>
 
 #include "solvers/no_flips_step.h"
-#include "strictmin/measures/field_deviation.h"
-#include "strictmin/solvers/timing.h"
 #include "strictmin/io/input_error.h"
+#include "strictmin/measures/field_deviation.h"
 #include "strictmin/solvers/no_flips.h"
 #include "strictmin/solvers/relax.h"
+#include "strictmin/solvers/timing.h"
 
 namespace strictmin {
 
 void steps_without_new_flips(const Problem& problem, const Eigen::MatrixXd& start, StepObjective objective,
                              const LinfOptions& options, Result& result, int max_steps, double relative_change) {
-  // Each step is one of a sequence around a moving map: its optimum is needed
-  // roughly only (a step that stops short, still lower, is kept; the next one
-  // goes on from it).
+  // Each step is one of a sequence around a moving map: its optimum is needed roughly only
+  // (a step that stops short, still lower, is kept; the next one goes on from it).
   constexpr double kStepGap = 1e-2;
   const auto t0 = std::chrono::steady_clock::now();
   const double unconstrained_time = result.time_s;
