@@ -12,10 +12,12 @@ constexpr double kEnergyStepGap = 1e-6;
 
 GlobalStep::GlobalStep(const Problem& p, const SolverOptions& solver, bool no_flips, bool constrained_steps,
                        bool warm_start)
-    : solver_(solver), constrained_steps_(constrained_steps) {
+    : solver_(solver),
+      constrained_steps_(constrained_steps),
+      energy_cone_steps_(solver.method == Method::L2 && constrained_steps && steps_without_new_flips_apply(p)) {
   if (solver.method == Method::Relax)
     sweeper_ = std::make_unique<RelaxSweeper>(p, solver.relax.accept_tolerance, no_flips);
-  else if (solver.method == Method::L2 && !p.has_equalities())
+  else if (solver.method == Method::L2 && !p.has_equalities() && !energy_cone_steps_)  // (unused by cone steps)
     l2_ = std::make_unique<L2Solver>(p);
   else if (solver.method == Method::Linf && warm_start)
     warm_ = std::make_unique<LinfWarmStart>();
@@ -35,8 +37,7 @@ Result GlobalStep::run(Problem& p, const Eigen::MatrixXd& X, double gap, double 
   // l2 under --no-flips: the least energy inside the orientation-preserving cones around X
   // (no_flips_step.h), where cutting the plain step back stalled (fish from Tutte: 26.09 ->
   // 25.79, against 5.53 without the constraint).
-  if (l2_ && constrained_steps_ && steps_without_new_flips_apply(p))
-    return step_without_new_flips(p, X, StepObjective::Energy, kEnergyStepGap);
+  if (energy_cone_steps_) return step_without_new_flips(p, X, StepObjective::Energy, kEnergyStepGap);
   if (l2_) {
     r.status = l2_->status();
     r.message = l2_->message();

@@ -38,7 +38,8 @@ class GlobalStep {
 
  private:
   SolverOptions solver_;
-  bool constrained_steps_ = false;  // linf on planar maps: the step inside the orientation-preserving cones
+  bool constrained_steps_ = false;  // linf, l2: the step inside the orientation-preserving cones
+  bool energy_cone_steps_ = false;  // l2 under constrained_steps_ where the cones apply (no L2 factorization)
   std::unique_ptr<L2Solver> l2_;
   std::unique_ptr<RelaxSweeper> sweeper_;
   // linf: the previous step's dual iterate, the next step's warm start (linf_warm_start.h).

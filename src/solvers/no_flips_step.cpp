@@ -262,7 +262,7 @@ double weighted_energy(const Problem& p, const Eigen::VectorXd& distortion) {
 }
 
 Result step_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, StepObjective objective,
-                              double gap_tolerance, double feasibility_tolerance) {
+                              double gap_tolerance, double feasibility_tolerance, bool certify) {
   const auto t0 = std::chrono::steady_clock::now();
   const bool maximum = objective == StepObjective::Maximum;
   Problem p = problem;
@@ -298,7 +298,7 @@ Result step_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0,
   const bool better = r.x.allFinite() && no_worse && flips_added(p, X0, X) == 0;
   out.positions = better ? X : X0;
   out.distortion = better ? d : d0;
-  out.lower_bound = maximum && r.status == qc::SparseSocpStatus::Converged
+  out.lower_bound = certify && maximum && r.status == qc::SparseSocpStatus::Converged
                         ? qc::corrected_dual_bound(step.program, r.z, &cache)
                         : -std::numeric_limits<double>::infinity();
   out.message = (out.status == SolveStatus::Solved ? "converged" : r.message) +

@@ -42,11 +42,12 @@ double weighted_energy(const Problem& problem, const Eigen::VectorXd& distortion
 // The step from X0 (#V by image_dim) for the problem's targets, to the relative gap
 // gap_tolerance and relative residuals feasibility_tolerance (the map returned is checked
 // either way: no flip added, objective no higher; X0 is returned when no iterate improved on
-// it). lower_bound (Maximum): a certified bound on this restricted program's optimum (not on
-// the unconstrained field deviation's); -inf for Energy. Status from the cone solver (solved,
-// max-iterations; stalled when it stopped short or failed: the map is usable either way).
+// it). lower_bound (Maximum, with certify): a certified bound on this restricted program's
+// optimum (not on the unconstrained field deviation's; it costs a factorization more); -inf for
+// Energy or without certify. Status from the cone solver (solved, max-iterations; stalled when
+// it stopped short or failed: the map is usable either way).
 Result step_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, StepObjective objective,
-                              double gap_tolerance, double feasibility_tolerance = 1e-9);
+                              double gap_tolerance, double feasibility_tolerance = 1e-9, bool certify = true);
 // The Maximum step.
 Result linf_without_new_flips(const Problem& problem, const Eigen::MatrixXd& X0, double gap_tolerance,
                               double feasibility_tolerance = 1e-9);
